@@ -1,0 +1,69 @@
+// ray.h — rays, hit records and the self-intersection-safe ray spawning used everywhere.
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+
+#include "caustica/util/math.h"
+
+namespace caustica {
+
+struct Ray {
+    Vec3f o, d;               // origin, direction (not necessarily unit length)
+    Float tMax = kInfinity;   // hits are searched for in (0, tMax)
+};
+
+inline constexpr uint32_t kNoPrimitive = 0xffffffffu;
+
+/// Closest-hit record. Primitive ids index triangles first, then spheres:
+/// id < numTriangles is triangle id, otherwise sphere (id - numTriangles).
+struct Hit {
+    Float t = kInfinity;
+    uint32_t primId = kNoPrimitive;
+    Float b1 = 0, b2 = 0;  // triangle barycentrics of vertices 1 and 2
+    CA_HD bool valid() const { return primId != kNoPrimitive; }
+};
+
+CA_HD_INLINE int32_t floatAsInt(Float f) {
+    int32_t i;
+    memcpy(&i, &f, sizeof f);
+    return i;
+}
+CA_HD_INLINE Float intAsFloat(int32_t i) {
+    Float f;
+    memcpy(&f, &i, sizeof f);
+    return f;
+}
+
+/// Offsets a surface point along the geometric normal so that a ray leaving it on the side of `n`
+/// does not hit the surface it starts on. Scale-aware: the offset is a fixed number of ulps of the
+/// coordinate, falling back to a tiny absolute offset near the origin (Wächter and Binder, "A Fast
+/// and Robust Method for Avoiding Self-Intersection", Ray Tracing Gems, 2019, ch. 6).
+CA_HD_INLINE Vec3f offsetRayOrigin(Vec3f p, Vec3f n) {
+    constexpr Float kOrigin = 1.0f / 32.0f, kFloatScale = 1.0f / 65536.0f, kIntScale = 256.0f;
+    Vec3f out;
+    for (int i = 0; i < 3; ++i) {
+        int32_t of = int32_t(kIntScale * n[i]);
+        Float pi = intAsFloat(floatAsInt(p[i]) + (p[i] < 0 ? -of : of));
+        out[i] = std::fabs(p[i]) < kOrigin ? p[i] + kFloatScale * n[i] : pi;
+    }
+    return out;
+}
+
+/// A ray leaving surface point `p` (geometric normal `ng`) in direction `d`.
+CA_HD_INLINE Ray spawnRay(Vec3f p, Vec3f ng, Vec3f d) {
+    return Ray{offsetRayOrigin(p, dot(d, ng) > 0 ? ng : -ng), d, kInfinity};
+}
+
+/// A shadow ray from surface point `p` (normal `ng`) to point `target` (normal `targetNg`, or
+/// zero for a point light). Both ends are offset; the ray stops just short of the target.
+CA_HD_INLINE Ray spawnRayTo(Vec3f p, Vec3f ng, Vec3f target, Vec3f targetNg) {
+    Vec3f toTarget = target - p;
+    Vec3f o = offsetRayOrigin(p, dot(toTarget, ng) > 0 ? ng : -ng);
+    Vec3f t = lengthSquared(targetNg) > 0
+                  ? offsetRayOrigin(target, dot(o - target, targetNg) > 0 ? targetNg : -targetNg)
+                  : target;
+    return Ray{o, t - o, 1 - 1e-4f};
+}
+
+}  // namespace caustica

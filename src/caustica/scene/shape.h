@@ -1,0 +1,32 @@
+// shape.h — shapes as the kernels see them: flat records pointing into global primitive arrays.
+#pragma once
+
+#include <cstdint>
+
+#include "caustica/util/math.h"
+
+namespace caustica {
+
+enum class ShapeType : uint32_t { Mesh, Sphere };
+
+/// One shape of the scene. A mesh owns triangles [primOffset, primOffset + primCount) of the
+/// global triangle array; a sphere owns sphere record primOffset (primCount = 1).
+struct Shape {
+    ShapeType type = ShapeType::Mesh;
+    uint32_t primOffset = 0;
+    uint32_t primCount = 0;
+    uint32_t bsdf = 0;          // index into SceneView::bsdfs
+    int32_t light = -1;         // index into SceneView::lights when the shape emits, else -1
+    bool hasNormals = false;    // per-vertex shading normals present (mesh)
+    bool hasUVs = false;        // per-vertex texture coordinates present (mesh)
+    bool flipNormals = false;   // Mitsuba's flip_normals: the surface's outside is the other side
+};
+
+/// An analytic sphere (Mitsuba's sphere shape). Normals point outwards unless the shape flips them.
+struct Sphere {
+    Vec3f center;
+    Float radius = 1;
+    uint32_t shape = 0;  // index into SceneView::shapes
+};
+
+}  // namespace caustica

@@ -1,0 +1,113 @@
+// math.h — small vector types and scalar helpers shared by CPU and GPU code.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+#include "caustica/util/platform.h"
+
+namespace caustica {
+
+using Float = float;
+
+inline constexpr Float kPi = 3.14159265358979323846f;
+inline constexpr Float kInvPi = 0.31830988618379067154f;
+inline constexpr Float kInv2Pi = 0.15915494309189533577f;
+inline constexpr Float kInv4Pi = 0.07957747154594766788f;
+inline constexpr Float kInfinity = 3.402823466e+38f;  // FLT_MAX: used as "no hit yet"
+inline constexpr Float kOneMinusEpsilon = 0x1.fffffep-1f;
+
+template <class T> CA_HD_INLINE T min(T a, T b) { return a < b ? a : b; }
+template <class T> CA_HD_INLINE T max(T a, T b) { return a > b ? a : b; }
+template <class T> CA_HD_INLINE T clamp(T v, T lo, T hi) { return v < lo ? lo : (v > hi ? hi : v); }
+template <class T> CA_HD_INLINE T sqr(T v) { return v * v; }
+CA_HD_INLINE Float lerp(Float t, Float a, Float b) { return (1 - t) * a + t * b; }
+CA_HD_INLINE Float safeSqrt(Float v) { return std::sqrt(max(v, Float(0))); }
+CA_HD_INLINE Float radians(Float deg) { return deg * (kPi / 180); }
+CA_HD_INLINE Float degrees(Float rad) { return rad * (180 / kPi); }
+
+struct Vec2f {
+    Float x = 0, y = 0;
+    CA_HD constexpr Vec2f() = default;
+    CA_HD constexpr Vec2f(Float x_, Float y_) : x(x_), y(y_) {}
+    CA_HD Float operator[](int i) const { return i == 0 ? x : y; }
+};
+CA_HD_INLINE Vec2f operator+(Vec2f a, Vec2f b) { return {a.x + b.x, a.y + b.y}; }
+CA_HD_INLINE Vec2f operator-(Vec2f a, Vec2f b) { return {a.x - b.x, a.y - b.y}; }
+CA_HD_INLINE Vec2f operator*(Vec2f a, Float s) { return {a.x * s, a.y * s}; }
+CA_HD_INLINE Vec2f operator*(Float s, Vec2f a) { return {a.x * s, a.y * s}; }
+
+struct Vec3f {
+    Float x = 0, y = 0, z = 0;
+    CA_HD constexpr Vec3f() = default;
+    CA_HD constexpr Vec3f(Float x_, Float y_, Float z_) : x(x_), y(y_), z(z_) {}
+    CA_HD explicit constexpr Vec3f(Float v) : x(v), y(v), z(v) {}
+    CA_HD Float operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
+    CA_HD Float& operator[](int i) { return i == 0 ? x : (i == 1 ? y : z); }
+    CA_HD Vec3f& operator+=(Vec3f b) { x += b.x; y += b.y; z += b.z; return *this; }
+    CA_HD Vec3f& operator-=(Vec3f b) { x -= b.x; y -= b.y; z -= b.z; return *this; }
+    CA_HD Vec3f& operator*=(Float s) { x *= s; y *= s; z *= s; return *this; }
+};
+CA_HD_INLINE Vec3f operator+(Vec3f a, Vec3f b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+CA_HD_INLINE Vec3f operator-(Vec3f a, Vec3f b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+CA_HD_INLINE Vec3f operator-(Vec3f a) { return {-a.x, -a.y, -a.z}; }
+CA_HD_INLINE Vec3f operator*(Vec3f a, Float s) { return {a.x * s, a.y * s, a.z * s}; }
+CA_HD_INLINE Vec3f operator*(Float s, Vec3f a) { return {a.x * s, a.y * s, a.z * s}; }
+CA_HD_INLINE Vec3f operator*(Vec3f a, Vec3f b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
+CA_HD_INLINE Vec3f operator/(Vec3f a, Float s) { Float inv = 1 / s; return a * inv; }
+CA_HD_INLINE bool operator==(Vec3f a, Vec3f b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+CA_HD_INLINE Float dot(Vec3f a, Vec3f b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+CA_HD_INLINE Float absDot(Vec3f a, Vec3f b) { return std::fabs(dot(a, b)); }
+CA_HD_INLINE Vec3f cross(Vec3f a, Vec3f b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+CA_HD_INLINE Float lengthSquared(Vec3f a) { return dot(a, a); }
+CA_HD_INLINE Float length(Vec3f a) { return std::sqrt(dot(a, a)); }
+CA_HD_INLINE Vec3f normalize(Vec3f a) { return a / length(a); }
+CA_HD_INLINE Vec3f min(Vec3f a, Vec3f b) { return {min(a.x, b.x), min(a.y, b.y), min(a.z, b.z)}; }
+CA_HD_INLINE Vec3f max(Vec3f a, Vec3f b) { return {max(a.x, b.x), max(a.y, b.y), max(a.z, b.z)}; }
+CA_HD_INLINE Vec3f abs(Vec3f a) { return {std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)}; }
+CA_HD_INLINE Float maxComponent(Vec3f a) { return max(a.x, max(a.y, a.z)); }
+CA_HD_INLINE int maxDimension(Vec3f a) { return a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2); }
+CA_HD_INLINE bool isFinite(Vec3f a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
+/// Flips `v` so that it lies in the same hemisphere as `ref`.
+CA_HD_INLINE Vec3f faceForward(Vec3f v, Vec3f ref) { return dot(v, ref) < 0 ? -v : v; }
+
+struct Vec3u {
+    uint32_t x = 0, y = 0, z = 0;
+    CA_HD uint32_t operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
+};
+
+/// Axis-aligned bounding box.
+struct Bounds3f {
+    Vec3f lo{kInfinity, kInfinity, kInfinity};
+    Vec3f hi{-kInfinity, -kInfinity, -kInfinity};
+    CA_HD void extend(Vec3f p) { lo = min(lo, p); hi = max(hi, p); }
+    CA_HD void extend(const Bounds3f& b) { lo = min(lo, b.lo); hi = max(hi, b.hi); }
+    CA_HD bool empty() const { return lo.x > hi.x || lo.y > hi.y || lo.z > hi.z; }
+    CA_HD Vec3f diagonal() const { return hi - lo; }
+    CA_HD Vec3f center() const { return (lo + hi) * 0.5f; }
+    CA_HD Float surfaceArea() const {
+        if (empty()) return 0;
+        Vec3f d = diagonal();
+        return 2 * (d.x * d.y + d.y * d.z + d.z * d.x);
+    }
+};
+
+/// Orthonormal basis around a unit normal (Duff et al. 2017, "Building an Orthonormal Basis,
+/// Revisited"). Local coordinates have the normal as +z.
+struct Frame {
+    Vec3f s, t, n;
+    CA_HD Frame() = default;
+    CA_HD explicit Frame(Vec3f normal) : n(normal) {
+        Float sign = std::copysign(Float(1), n.z);
+        Float a = -1 / (sign + n.z);
+        Float b = n.x * n.y * a;
+        s = Vec3f(1 + sign * n.x * n.x * a, sign * b, -sign * n.x);
+        t = Vec3f(b, sign + n.y * n.y * a, -n.y);
+    }
+    CA_HD Vec3f toLocal(Vec3f v) const { return {dot(v, s), dot(v, t), dot(v, n)}; }
+    CA_HD Vec3f toWorld(Vec3f v) const { return s * v.x + t * v.y + n * v.z; }
+};
+
+}  // namespace caustica

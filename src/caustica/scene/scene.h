@@ -76,6 +76,7 @@ struct Scene {
     FilmDesc film;
     IntegratorDesc integrator;
     int sampleCount = 4;   // sampler sample_count (samples per pixel)
+    uint64_t seed = 0;     // sampler seed (Mitsuba's <integer name="seed">)
     std::string sourceFile;
 
     SceneView view() const {

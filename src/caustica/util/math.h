@@ -28,7 +28,7 @@ CA_HD_INLINE Float degrees(Float rad) { return rad * (180 / kPi); }
 
 struct Vec2f {
     Float x = 0, y = 0;
-    CA_HD constexpr Vec2f() = default;
+    constexpr Vec2f() = default;
     CA_HD constexpr Vec2f(Float x_, Float y_) : x(x_), y(y_) {}
     CA_HD Float operator[](int i) const { return i == 0 ? x : y; }
 };
@@ -39,7 +39,7 @@ CA_HD_INLINE Vec2f operator*(Float s, Vec2f a) { return {a.x * s, a.y * s}; }
 
 struct Vec3f {
     Float x = 0, y = 0, z = 0;
-    CA_HD constexpr Vec3f() = default;
+    constexpr Vec3f() = default;
     CA_HD constexpr Vec3f(Float x_, Float y_, Float z_) : x(x_), y(y_), z(z_) {}
     CA_HD explicit constexpr Vec3f(Float v) : x(v), y(v), z(v) {}
     CA_HD Float operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
@@ -98,7 +98,7 @@ struct Bounds3f {
 /// Revisited"). Local coordinates have the normal as +z.
 struct Frame {
     Vec3f s, t, n;
-    CA_HD Frame() = default;
+    Frame() = default;
     CA_HD explicit Frame(Vec3f normal) : n(normal) {
         Float sign = std::copysign(Float(1), n.z);
         Float a = -1 / (sign + n.z);

@@ -30,7 +30,7 @@ CA_HD_INLINE Float uniformFloat(uint64_t bits) {
 /// takes its numbers from (get1D/get2D), so that Metropolis can substitute its own sampler.
 class IndependentSampler {
 public:
-    CA_HD IndependentSampler() = default;
+    IndependentSampler() = default;
     /// `stream` identifies the pixel (or chain), `sampleIndex` the sample within it.
     CA_HD IndependentSampler(uint64_t stream, uint64_t sampleIndex, uint64_t seed)
         : key_(hashCombine(hashCombine(mix64(seed + 0x632be59bd9b4e019ull), stream), sampleIndex)) {}

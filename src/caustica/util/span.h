@@ -13,7 +13,7 @@ struct Span {
     T* ptr = nullptr;
     size_t count = 0;
 
-    CA_HD constexpr Span() = default;
+    constexpr Span() = default;
     CA_HD constexpr Span(T* p, size_t n) : ptr(p), count(n) {}
     template <class U>
     Span(const std::vector<U>& v) : ptr(v.data()), count(v.size()) {}  // host only

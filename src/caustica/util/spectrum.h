@@ -7,7 +7,7 @@ namespace caustica {
 
 struct Spectrum {
     Float r = 0, g = 0, b = 0;
-    CA_HD constexpr Spectrum() = default;
+    constexpr Spectrum() = default;
     CA_HD constexpr Spectrum(Float r_, Float g_, Float b_) : r(r_), g(g_), b(b_) {}
     CA_HD explicit constexpr Spectrum(Float v) : r(v), g(v), b(v) {}
     CA_HD Float operator[](int i) const { return i == 0 ? r : (i == 1 ? g : b); }

@@ -34,7 +34,7 @@ bool invert(const Matrix4& a, Matrix4& out);
 struct Transform {
     Matrix4 m, mInv;
 
-    CA_HD Transform() = default;
+    Transform() = default;
     CA_HD Transform(const Matrix4& m_, const Matrix4& mInv_) : m(m_), mInv(mInv_) {}
     /// Host only: builds the inverse; throws std::domain_error for a singular matrix.
     static Transform fromMatrix(const Matrix4& m);

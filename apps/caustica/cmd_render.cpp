@@ -1,0 +1,168 @@
+// caustica render SCENE — render a scene to image files, with a sample or time budget, progress,
+// statistics and checkpoints.
+#include <tbb/global_control.h>
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+
+#include "commands.h"
+#include "render_output.h"
+#include "caustica/accel/accel.h"
+#include "caustica/integrators/path/path_integrator.h"
+#include "caustica/integrators/render_loop.h"
+#include "caustica/io/scene_loader.h"
+#include "caustica/util/error.h"
+#include "caustica/util/progress.h"
+
+namespace caustica::cli {
+namespace {
+
+std::atomic<bool> gCancel{false};
+
+void onInterrupt(int) {
+    // First Ctrl-C: finish the pass, write the image and a checkpoint. Second: default action.
+    gCancel.store(true);
+    std::signal(SIGINT, SIG_DFL);
+    std::signal(SIGTERM, SIG_DFL);
+}
+
+struct RenderOptions {
+    std::string scene;
+    std::vector<std::string> outputs;
+    int spp = 0;
+    double time = 0;
+    int threads = 0;
+    uint64_t seed = 0;
+    std::string res;
+    std::vector<std::string> defines;
+    std::string accel = "embree";
+    std::string integrator = "path";
+    std::string statsJson;
+    int sppPerPass = 1;
+    double checkpointEvery = 60;
+    bool resume = false;
+    bool quiet = false;
+};
+
+void applyResolution(Scene& scene, const std::string& res) {
+    int w = 0, h = 0;
+    char x = 0;
+    if (std::sscanf(res.c_str(), "%d%c%d", &w, &x, &h) != 3 || (x != 'x' && x != 'X'))
+        throw Error("--res " + res + ": expected WIDTHxHEIGHT, e.g. 640x480");
+    if (w <= 0 || h <= 0 || w > 32768 || h > 32768 || int64_t(w) * h > (int64_t(1) << 28))
+        throw Error("--res " + res + ": absurd resolution (each side 1..32768, at most 2^28 pixels)");
+    // Keeps the horizontal field of view (Mitsuba's default fov_axis="x").
+    scene.camera.tanHalfY = scene.camera.tanHalfX * Float(h) / Float(w);
+    scene.camera.width = scene.film.width = w;
+    scene.camera.height = scene.film.height = h;
+}
+
+}  // namespace
+
+std::function<int()> addRenderCommand(CLI::App& app) {
+    auto opt = std::make_shared<RenderOptions>();
+    CLI::App* cmd = app.add_subcommand("render", "Render a Mitsuba 3 XML scene");
+    cmd->add_option("scene", opt->scene, "Scene file (Mitsuba 3 XML)")->required()->check(CLI::ExistingFile);
+    cmd->add_option("-o,--output", opt->outputs,
+                    "Output image(s): .exr (float RGB + metadata), .pfm, .png (sRGB); repeatable. "
+                    "Default: SCENE_NAME.exr in the current directory");
+    cmd->add_option("--spp", opt->spp, "Samples per pixel (default: the scene's sample_count; "
+                                       "with --time alone: unlimited)")->check(CLI::Range(1, 1 << 24));
+    cmd->add_option("--time", opt->time, "Time budget in seconds; stops after the pass that reaches it")
+        ->check(CLI::PositiveNumber);
+    cmd->add_option("--threads", opt->threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 4096));
+    cmd->add_option("--seed", opt->seed, "Seed of the random streams; the image depends only on it, "
+                                         "never on the thread count");
+    cmd->add_option("--res", opt->res, "Override the film resolution, WIDTHxHEIGHT");
+    cmd->add_option("-D,--define", opt->defines, "Set a scene <default> parameter: -D name=value (repeatable)");
+    cmd->add_option("--accel", opt->accel, "Ray-tracing backend on the CPU")
+        ->check(CLI::IsMember({"embree", "bvh"}));
+    cmd->add_option("--integrator", opt->integrator, "Integrator (overrides the scene's)")
+        ->check(CLI::IsMember({"path"}));
+    cmd->add_option("--stats-json", opt->statsJson, "Write the final statistics as JSON to this file");
+    cmd->add_option("--spp-per-pass", opt->sppPerPass, "Samples per pixel in one pass (progress and "
+                                                       "checkpoint granularity)")->check(CLI::Range(1, 4096));
+    cmd->add_option("--checkpoint-every", opt->checkpointEvery,
+                    "Seconds between checkpoints (images + OUTPUT.ckpt); 0 disables")
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_flag("--resume", opt->resume, "Continue from OUTPUT.ckpt left by an interrupted render");
+    cmd->add_flag("-q,--quiet", opt->quiet, "No progress bar");
+
+    return [opt] {
+        std::unique_ptr<tbb::global_control> threadLimit;
+        if (opt->threads > 0)
+            threadLimit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                                size_t(opt->threads));
+        if (opt->outputs.empty())
+            opt->outputs.push_back(std::filesystem::path(opt->scene).stem().string() + ".exr");
+        for (const std::string& out : opt->outputs) checkOutputPath(out);
+
+        Scene scene = loadScene(opt->scene, parseDefines(opt->defines));
+        if (!opt->res.empty()) applyResolution(scene, opt->res);
+        const int sppTarget = opt->spp > 0 ? opt->spp : (opt->time > 0 ? 0 : scene.sampleCount);
+
+        Film film(scene.film);
+        const std::string checkpoint = opt->outputs.front() + ".ckpt";
+        if (opt->resume) {
+            if (!std::filesystem::exists(checkpoint)) throw Error(checkpoint + ": no checkpoint to resume from");
+            loadCheckpoint(checkpoint, film, opt->seed);
+            std::fprintf(stderr, "resuming from %s at %d spp\n", checkpoint.c_str(), int(film.samplesPerPixel()));
+        }
+
+        const AccelKind accelKind = parseAccelKind(opt->accel);
+        auto buildStart = std::chrono::steady_clock::now();
+        Accel accel(scene, accelKind);
+        double buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - buildStart).count();
+        if (!opt->quiet)
+            std::fprintf(stderr, "%s: %zu triangles, %zu spheres, %zu lights; %dx%d; %s built in %s\n",
+                         opt->scene.c_str(), scene.triangles.size(), scene.spheres.size(), scene.lights.size(),
+                         scene.film.width, scene.film.height, opt->accel.c_str(),
+                         ProgressReporter::formatDuration(buildSeconds).c_str());
+
+        const PathSettings settings = pathSettingsFrom(scene.integrator);
+        RenderBudget budget;
+        budget.samplesPerPixel = sppTarget;
+        budget.timeLimit = opt->time;
+        budget.samplesPerPass = opt->sppPerPass;
+        budget.cancel = &gCancel;
+        std::signal(SIGINT, onInterrupt);
+        std::signal(SIGTERM, onInterrupt);
+
+        std::unique_ptr<ProgressReporter> progress;
+        if (!opt->quiet)
+            progress = std::make_unique<ProgressReporter>("render", sppTarget > 0 ? sppTarget : 0, opt->time);
+        double lastCheckpoint = 0;
+        OutputInfo info{opt->scene, "path", opt->accel, opt->seed};
+        auto passDone = [&](const Film& f, const RenderStats& stats) {
+            if (progress) progress->update(double(f.samplesPerPixel()));
+            if (opt->checkpointEvery > 0 && stats.seconds - lastCheckpoint >= opt->checkpointEvery) {
+                lastCheckpoint = stats.seconds;
+                writeOutputs(opt->outputs, f, stats, info);
+                saveCheckpoint(checkpoint, f, opt->seed);
+            }
+        };
+        auto renderPass = [&](int first, int k, SamplePass& pass) {
+            return renderPathPass(scene, accel, settings, opt->seed, first, pass);
+        };
+        RenderStats stats = runRenderLoop(film, budget, renderPass, passDone);
+        if (progress) progress->finish();
+
+        writeOutputs(opt->outputs, film, stats, info);
+        if (stats.cancelled) {
+            saveCheckpoint(checkpoint, film, opt->seed);
+            std::fprintf(stderr, "interrupted: wrote %d spp and %s (continue with --resume)\n",
+                         int(film.samplesPerPixel()), checkpoint.c_str());
+        } else if (std::filesystem::exists(checkpoint)) {
+            std::filesystem::remove(checkpoint);
+        }
+        printSummary(stats, stdout);
+        if (!opt->statsJson.empty()) writeStatsJson(opt->statsJson, stats, info, buildSeconds);
+        return stats.cancelled ? 130 : 0;
+    };
+}
+
+}  // namespace caustica::cli

@@ -1,0 +1,268 @@
+// bench_rays.cpp — single-threaded ray throughput: the own BVH against Embree on the same rays.
+//
+// Ray sets, precomputed once per scene and shared by both backends:
+//   camera  one primary ray per pixel centre (closest hit)
+//   bounce  cosine-distributed diffuse rays from the camera rays' first hits (closest hit)
+//   shadow  any-hit rays from the same hit points to a point near the top of the scene
+// Scenes: a procedural displaced icosphere (327,680 triangles) on a ground quad, and
+// scenes/cornell-water/scene.xml when it loads (skipped with the reason printed otherwise).
+//
+//   bench_rays [--benchmark_filter=...] [--benchmark_repetitions=N]
+// ends with a table: scene, ray type, BVH Mrays/s, Embree Mrays/s, BVH / Embree.
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+
+#include "caustica/accel/bvh.h"
+#include "caustica/accel/embree_accel.h"
+#include "caustica/accel/intersector.h"
+#include "caustica/scene/camera.h"
+#include "caustica/scene/interaction.h"
+#include "caustica/util/rng.h"
+#include "caustica/util/sampling.h"
+
+#if __has_include("caustica/io/scene_loader.h")
+#include "caustica/io/scene_loader.h"
+#define CAUSTICA_BENCH_HAS_LOADER 1
+#endif
+
+using namespace caustica;
+
+namespace {
+
+// ---- procedural scene: displaced icosphere --------------------------------------------------
+
+/// Smooth 3D value noise in [-1, 1] from hashed lattice values (trilinear, smoothstep-faded).
+Float valueNoise(Vec3f p) {
+    const Float fx = std::floor(p.x), fy = std::floor(p.y), fz = std::floor(p.z);
+    auto lattice = [](int x, int y, int z) {
+        const uint64_t h = hashCombine(hashCombine(mix64(uint64_t(uint32_t(x))), uint32_t(y)),
+                                       uint32_t(z));
+        return 2 * uniformFloat(h) - 1;
+    };
+    auto fade = [](Float t) { return t * t * (3 - 2 * t); };
+    const Float ux = fade(p.x - fx), uy = fade(p.y - fy), uz = fade(p.z - fz);
+    const int x = int(fx), y = int(fy), z = int(fz);
+    Float c[2][2];
+    for (int j = 0; j < 2; ++j)
+        for (int k = 0; k < 2; ++k)
+            c[j][k] = lerp(ux, lattice(x, y + j, z + k), lattice(x + 1, y + j, z + k));
+    return lerp(uz, lerp(uy, c[0][0], c[1][0]), lerp(uy, c[0][1], c[1][1]));
+}
+
+Float fbm(Vec3f p) {
+    Float sum = 0, amp = 0.5f;
+    for (int octave = 0; octave < 5; ++octave, p = p * 2.03f, amp *= 0.5f) sum += amp * valueNoise(p);
+    return sum;
+}
+
+/// An icosahedron subdivided `levels` times (20 * 4^levels triangles), projected to the unit
+/// sphere and displaced radially by fractal noise, standing on a large ground quad.
+Scene makeProceduralScene(int levels) {
+    Scene scene;
+    const Float g = (1 + std::sqrt(5.0f)) / 2;
+    std::vector<Vec3f> v = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
+                            {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
+    std::vector<Vec3u> f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                            {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                            {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                            {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
+    for (Vec3f& p : v) p = normalize(p);
+    for (int level = 0; level < levels; ++level) {
+        std::unordered_map<uint64_t, uint32_t> midpoints;
+        auto midpoint = [&](uint32_t a, uint32_t b) {
+            const uint64_t key = (uint64_t(min(a, b)) << 32) | max(a, b);
+            auto it = midpoints.find(key);
+            if (it != midpoints.end()) return it->second;
+            v.push_back(normalize(v[a] + v[b]));
+            return midpoints[key] = uint32_t(v.size() - 1);
+        };
+        std::vector<Vec3u> next;
+        next.reserve(f.size() * 4);
+        for (const Vec3u& t : f) {
+            const uint32_t ab = midpoint(t.x, t.y), bc = midpoint(t.y, t.z), ca = midpoint(t.z, t.x);
+            next.push_back({t.x, ab, ca});
+            next.push_back({t.y, bc, ab});
+            next.push_back({t.z, ca, bc});
+            next.push_back({ab, bc, ca});
+        }
+        f.swap(next);
+    }
+    for (Vec3f& p : v) p = p * (1 + 0.35f * fbm(p * 3.0f + Vec3f(7.1f, 3.3f, 1.7f)));
+
+    Shape mesh;
+    mesh.primCount = uint32_t(f.size()) + 2;
+    scene.shapes.push_back(mesh);
+    scene.positions = v;
+    scene.triangles = f;
+    const uint32_t base = uint32_t(scene.positions.size());
+    for (Vec3f p : {Vec3f(-20, -1.25f, -20), Vec3f(20, -1.25f, -20), Vec3f(20, -1.25f, 20),
+                    Vec3f(-20, -1.25f, 20)})
+        scene.positions.push_back(p);
+    scene.triangles.push_back({base, base + 2, base + 1});
+    scene.triangles.push_back({base, base + 3, base + 2});
+    scene.triangleShape.assign(scene.triangles.size(), 0);
+
+    Camera& cam = scene.camera;
+    cam.width = 640;
+    cam.height = 480;
+    cam.tanHalfY = std::tan(radians(20.0f));
+    cam.tanHalfX = cam.tanHalfY * Float(cam.width) / Float(cam.height);
+    cam.worldFromCamera = lookAt(Vec3f(0.6f, 0.9f, 3.4f), Vec3f(0, -0.15f, 0), Vec3f(0, 1, 0));
+    return scene;
+}
+
+// ---- ray sets --------------------------------------------------------------------------------
+
+struct BenchScene {
+    std::string name;
+    Scene scene;
+    Bvh bvh;
+    std::unique_ptr<EmbreeScene> embree;
+    std::vector<Ray> camera, bounce, shadow;
+};
+
+/// Camera rays, then diffuse bounces and shadow rays from their first hits (found with the BVH).
+void makeRays(BenchScene& b) {
+    const Camera& cam = b.scene.camera;
+    const SceneView view = b.scene.view();
+    const BvhIntersector it{b.bvh.view(), view};
+    const Bounds3f bounds = b.scene.bounds();
+    const Vec3f light = bounds.center() + Vec3f(0, 0.45f * bounds.diagonal().y, 0);
+    for (int y = 0; y < cam.height; ++y)
+        for (int x = 0; x < cam.width; ++x) {
+            const Ray ray = generateCameraRay(cam, Vec2f(x + 0.5f, y + 0.5f));
+            b.camera.push_back(ray);
+            Hit hit;
+            if (!it.intersect(ray, hit)) continue;
+            const SurfaceInteraction si = computeInteraction(view, ray, hit);
+            const Vec3f n = faceForward(si.ng, -ray.d);
+            IndependentSampler sampler(uint64_t(y) * cam.width + x, 0, 7);
+            const Vec3f dir = Frame(n).toWorld(sampleCosineHemisphere(sampler.get2D()));
+            b.bounce.push_back(spawnRay(si.p, n, dir));
+            b.shadow.push_back(spawnRayTo(si.p, n, light, Vec3f(0, 0, 0)));
+        }
+}
+
+std::vector<std::unique_ptr<BenchScene>> gScenes;
+
+template <class Intersector>
+void traceRays(benchmark::State& state, const Intersector& it, const std::vector<Ray>& rays,
+               bool anyHit) {
+    uint64_t hits = 0;
+    for (auto _ : state) {
+        hits = 0;
+        if (anyHit) {
+            for (const Ray& ray : rays) hits += it.occluded(ray);
+        } else {
+            for (const Ray& ray : rays) {
+                Hit hit;
+                hits += it.intersect(ray, hit);
+            }
+        }
+        benchmark::DoNotOptimize(hits);
+    }
+    state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(rays.size()));
+    state.counters["rays/s"] =
+        benchmark::Counter(double(rays.size()), benchmark::Counter::kIsIterationInvariantRate);
+    state.counters["hit%"] = 100.0 * double(hits) / double(max<size_t>(rays.size(), 1));
+}
+
+void registerScene(const BenchScene& b) {
+    const std::pair<const char*, const std::vector<Ray>*> sets[] = {
+        {"camera", &b.camera}, {"bounce", &b.bounce}, {"shadow", &b.shadow}};
+    for (const auto& [type, rays] : sets) {
+        const bool anyHit = std::string(type) == "shadow";
+        const std::string prefix = "rays/" + b.name + "/" + type + "/";
+        benchmark::RegisterBenchmark((prefix + "bvh").c_str(), [&b, rays, anyHit](auto& st) {
+            traceRays(st, BvhIntersector{b.bvh.view(), b.scene.view()}, *rays, anyHit);
+        })->Unit(benchmark::kMillisecond)->MinTime(1.0);
+        benchmark::RegisterBenchmark((prefix + "embree").c_str(), [&b, rays, anyHit](auto& st) {
+            traceRays(st, b.embree->intersector(), *rays, anyHit);
+        })->Unit(benchmark::kMillisecond)->MinTime(1.0);
+    }
+}
+
+void addScene(std::string name, Scene scene) {
+    auto b = std::make_unique<BenchScene>();
+    b->name = std::move(name);
+    b->scene = std::move(scene);
+    b->bvh = buildBvh(b->scene);
+    b->embree = std::make_unique<EmbreeScene>(b->scene);
+    makeRays(*b);
+    const BvhStats& s = b->bvh.stats;
+    std::printf("%s: %u triangles, %zu spheres; BVH %u nodes, depth %u, %.2f prims/leaf, SAH %.1f, "
+                "%.1f MiB, built in %.0f ms; Embree built in %.0f ms; rays: %zu camera, %zu bounce, "
+                "%zu shadow\n",
+                b->name.c_str(), uint32_t(b->scene.triangles.size()), b->scene.spheres.size(),
+                s.nodeCount, s.maxDepth, s.averageLeafSize, s.sahCost,
+                double(s.memoryBytes) / (1 << 20), s.buildMilliseconds,
+                b->embree->buildMilliseconds(), b->camera.size(), b->bounce.size(),
+                b->shadow.size());
+    gScenes.push_back(std::move(b));
+}
+
+/// Console output as usual, plus every run's rays/s kept for the final table.
+class TableReporter : public benchmark::ConsoleReporter {
+public:
+    void ReportRuns(const std::vector<Run>& runs) override {
+        ConsoleReporter::ReportRuns(runs);
+        for (const Run& run : runs) {
+            if (run.error_occurred) continue;
+            auto it = run.counters.find("rays/s");
+            // With repetitions, prefer the median aggregate; otherwise the single run.
+            const std::string name = run.run_name.function_name;
+            if (it == run.counters.end()) continue;
+            if (run.run_type == Run::RT_Aggregate && run.aggregate_name != "median") continue;
+            if (run.run_type == Run::RT_Aggregate || !rates_.count(name)) rates_[name] = it->second;
+        }
+    }
+    const std::map<std::string, double>& rates() const { return rates_; }
+
+private:
+    std::map<std::string, double> rates_;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    benchmark::Initialize(&argc, argv);
+    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+
+    addScene("icosphere-330k", makeProceduralScene(7));
+#ifdef CAUSTICA_BENCH_HAS_LOADER
+    const std::string path = std::string(CAUSTICA_SOURCE_DIR) + "/scenes/cornell-water/scene.xml";
+    try {
+        std::vector<std::string> warnings;
+        addScene("cornell-water", loadScene(path, {{"width", "640"}, {"height", "640"}}, &warnings));
+    } catch (const std::exception& e) {
+        std::printf("cornell-water skipped: %s\n", e.what());
+    }
+#else
+    std::printf("cornell-water skipped: caustica/io/scene_loader.h is not available\n");
+#endif
+    for (const auto& b : gScenes) registerScene(*b);
+
+    TableReporter reporter;
+    benchmark::RunSpecifiedBenchmarks(&reporter);
+
+    std::printf("\n%-16s %-8s %13s %16s %8s\n", "scene", "rays", "BVH Mrays/s", "Embree Mrays/s",
+                "ratio");
+    for (const auto& b : gScenes)
+        for (const char* type : {"camera", "bounce", "shadow"}) {
+            const std::string prefix = "rays/" + b->name + "/" + type + "/";
+            auto bvh = reporter.rates().find(prefix + "bvh");
+            auto emb = reporter.rates().find(prefix + "embree");
+            if (bvh == reporter.rates().end() || emb == reporter.rates().end()) continue;
+            std::printf("%-16s %-8s %13.2f %16.2f %8.2f\n", b->name.c_str(), type,
+                        bvh->second * 1e-6, emb->second * 1e-6, bvh->second / emb->second);
+        }
+    benchmark::Shutdown();
+    return 0;
+}

@@ -1,0 +1,212 @@
+// embree_accel.cpp — Embree 3 scene construction and single-ray queries (see embree_accel.h).
+#include "caustica/accel/embree_accel.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include <embree3/rtcore.h>
+
+#include "caustica/accel/primitive_intersect.h"
+#include "caustica/util/error.h"
+
+namespace caustica {
+namespace {
+
+constexpr unsigned kTriangleGeomId = 0;
+constexpr unsigned kSphereGeomId = 1;
+
+const char* errorName(RTCError code) {
+    switch (code) {
+    case RTC_ERROR_NONE: return "no error";
+    case RTC_ERROR_UNKNOWN: return "unknown error";
+    case RTC_ERROR_INVALID_ARGUMENT: return "invalid argument";
+    case RTC_ERROR_INVALID_OPERATION: return "invalid operation";
+    case RTC_ERROR_OUT_OF_MEMORY: return "out of memory";
+    case RTC_ERROR_UNSUPPORTED_CPU: return "unsupported CPU";
+    case RTC_ERROR_CANCELLED: return "cancelled";
+    }
+    return "unrecognised error code";
+}
+
+void errorCallback(void* user, RTCError code, const char* message) {
+    *static_cast<std::string*>(user) = std::string(errorName(code)) + (message ? ": " : "") +
+                                       (message ? message : "");
+}
+
+// ---- sphere user geometry: the callbacks run caustica's own intersectSphere ------------------
+
+void sphereBounds(const RTCBoundsFunctionArguments* args) {
+    const Sphere& s = static_cast<const Sphere*>(args->geometryUserPtr)[args->primID];
+    RTCBounds* b = args->bounds_o;
+    b->lower_x = s.center.x - s.radius;
+    b->lower_y = s.center.y - s.radius;
+    b->lower_z = s.center.z - s.radius;
+    b->upper_x = s.center.x + s.radius;
+    b->upper_y = s.center.y + s.radius;
+    b->upper_z = s.center.z + s.radius;
+}
+
+/// Hit distance of lane i against the sphere, or a negative value for a miss.
+float sphereHit(const Sphere& s, RTCRayN* ray, unsigned N, unsigned i) {
+    const Vec3f o(RTCRayN_org_x(ray, N, i), RTCRayN_org_y(ray, N, i), RTCRayN_org_z(ray, N, i));
+    const Vec3f d(RTCRayN_dir_x(ray, N, i), RTCRayN_dir_y(ray, N, i), RTCRayN_dir_z(ray, N, i));
+    Float t;
+    if (!intersectSphere(o, d, RTCRayN_tfar(ray, N, i), s.center, s.radius, t)) return -1;
+    return t > RTCRayN_tnear(ray, N, i) ? t : -1;
+}
+
+void sphereIntersect(const RTCIntersectFunctionNArguments* args) {
+    const Sphere& s = static_cast<const Sphere*>(args->geometryUserPtr)[args->primID];
+    RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, args->N);
+    RTCHitN* hit = RTCRayHitN_HitN(args->rayhit, args->N);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] != -1) continue;
+        const float t = sphereHit(s, ray, args->N, i);
+        if (t < 0) continue;
+        RTCRayN_tfar(ray, args->N, i) = t;
+        const Vec3f o(RTCRayN_org_x(ray, args->N, i), RTCRayN_org_y(ray, args->N, i),
+                      RTCRayN_org_z(ray, args->N, i));
+        const Vec3f d(RTCRayN_dir_x(ray, args->N, i), RTCRayN_dir_y(ray, args->N, i),
+                      RTCRayN_dir_z(ray, args->N, i));
+        const Vec3f n = o + d * t - s.center;
+        RTCHitN_Ng_x(hit, args->N, i) = n.x;
+        RTCHitN_Ng_y(hit, args->N, i) = n.y;
+        RTCHitN_Ng_z(hit, args->N, i) = n.z;
+        RTCHitN_u(hit, args->N, i) = 0;
+        RTCHitN_v(hit, args->N, i) = 0;
+        RTCHitN_primID(hit, args->N, i) = args->primID;
+        RTCHitN_geomID(hit, args->N, i) = args->geomID;
+        RTCHitN_instID(hit, args->N, i, 0) = args->context->instID[0];
+    }
+}
+
+void sphereOccluded(const RTCOccludedFunctionNArguments* args) {
+    const Sphere& s = static_cast<const Sphere*>(args->geometryUserPtr)[args->primID];
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] != -1) continue;
+        if (sphereHit(s, args->ray, args->N, i) >= 0)
+            RTCRayN_tfar(args->ray, args->N, i) = -std::numeric_limits<float>::infinity();
+    }
+}
+
+/// Embree accepts hits with t <= tfar; the largest float below tMax makes the interval open.
+void setRay(RTCRay& r, const Ray& ray) {
+    r.org_x = ray.o.x;
+    r.org_y = ray.o.y;
+    r.org_z = ray.o.z;
+    r.tnear = 0;
+    r.dir_x = ray.d.x;
+    r.dir_y = ray.d.y;
+    r.dir_z = ray.d.z;
+    r.time = 0;
+    r.tfar = std::nextafter(ray.tMax, 0.0f);
+    r.mask = ~0u;
+    r.id = 0;
+    r.flags = 0;
+}
+
+}  // namespace
+
+EmbreeScene::EmbreeScene(const Scene& scene)
+    : numTriangles_(uint32_t(scene.triangles.size())) {
+    const auto start = std::chrono::steady_clock::now();
+    device_ = rtcNewDevice(nullptr);
+    if (!device_)
+        throw Error(std::string("Embree: cannot create device: ") +
+                    errorName(rtcGetDeviceError(nullptr)));
+    rtcSetDeviceErrorFunction(device_, errorCallback, &lastMessage_);
+    try {
+        scene_ = rtcNewScene(device_);
+        check("rtcNewScene");
+        rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+        if (numTriangles_ > 0) {
+            RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+            check("rtcNewGeometry(triangle)");
+            // Embree-allocated buffers are padded for its 16-byte loads; shared std::vectors are not.
+            void* vertices = rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                     RTC_FORMAT_FLOAT3, sizeof(Vec3f),
+                                                     scene.positions.size());
+            void* indices = rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0,
+                                                    RTC_FORMAT_UINT3, sizeof(Vec3u), numTriangles_);
+            check("rtcSetNewGeometryBuffer");
+            std::memcpy(vertices, scene.positions.data(), scene.positions.size() * sizeof(Vec3f));
+            std::memcpy(indices, scene.triangles.data(), numTriangles_ * sizeof(Vec3u));
+            rtcCommitGeometry(geom);
+            rtcAttachGeometryByID(scene_, geom, kTriangleGeomId);
+            rtcReleaseGeometry(geom);
+            check("triangle geometry");
+        }
+        if (!scene.spheres.empty()) {
+            RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_USER);
+            check("rtcNewGeometry(user)");
+            rtcSetGeometryUserPrimitiveCount(geom, unsigned(scene.spheres.size()));
+            rtcSetGeometryUserData(geom, const_cast<Sphere*>(scene.spheres.data()));
+            rtcSetGeometryBoundsFunction(geom, sphereBounds, nullptr);
+            rtcSetGeometryIntersectFunction(geom, sphereIntersect);
+            rtcSetGeometryOccludedFunction(geom, sphereOccluded);
+            rtcCommitGeometry(geom);
+            rtcAttachGeometryByID(scene_, geom, kSphereGeomId);
+            rtcReleaseGeometry(geom);
+            check("sphere geometry");
+        }
+        rtcCommitScene(scene_);
+        check("rtcCommitScene");
+    } catch (...) {
+        release();
+        throw;
+    }
+    buildMilliseconds_ =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+EmbreeScene::~EmbreeScene() { release(); }
+
+void EmbreeScene::release() {
+    if (scene_) rtcReleaseScene(scene_);
+    if (device_) rtcReleaseDevice(device_);
+    scene_ = nullptr;
+    device_ = nullptr;
+}
+
+void EmbreeScene::check(const char* what) {
+    const RTCError code = rtcGetDeviceError(device_);
+    if (code == RTC_ERROR_NONE) return;
+    throw Error(std::string("Embree: ") + what + " failed: " +
+                (lastMessage_.empty() ? errorName(code) : lastMessage_));
+}
+
+bool EmbreeIntersector::intersect(const Ray& ray, Hit& hit) const {
+    if (!scene || !(ray.tMax > 0)) return false;
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rayHit;
+    setRay(rayHit.ray, ray);
+    rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rayHit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene, &context, &rayHit);
+    if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+    hit.t = rayHit.ray.tfar;
+    if (rayHit.hit.geomID == kTriangleGeomId) {
+        hit.primId = rayHit.hit.primID;
+        hit.b1 = rayHit.hit.u;
+        hit.b2 = rayHit.hit.v;
+    } else {
+        hit.primId = numTriangles + rayHit.hit.primID;
+        hit.b1 = hit.b2 = 0;
+    }
+    return true;
+}
+
+bool EmbreeIntersector::occluded(const Ray& ray) const {
+    if (!scene || !(ray.tMax > 0)) return false;
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRay r;
+    setRay(r, ray);
+    rtcOccluded1(scene, &context, &r);
+    return r.tfar < 0;
+}
+
+}  // namespace caustica

@@ -1,0 +1,54 @@
+// embree_accel.h — the Embree 3 backend (host only). This header does not include Embree's headers
+// (the handles are opaque), so any translation unit, nvcc-compiled ones included, may include it.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "caustica/scene/ray.h"
+#include "caustica/scene/scene.h"
+
+struct RTCDeviceTy;  // Embree's opaque handle types (RTCDevice, RTCScene)
+struct RTCSceneTy;
+
+namespace caustica {
+
+/// Single-ray queries against a committed Embree scene, with the same contract as BvhIntersector:
+/// `intersect` fills `hit` (t, primId, b1 = Embree's u, b2 = v) for the closest hit with t in
+/// (0, ray.tMax) and returns true, leaving `hit` unchanged on a miss; `occluded` reports any hit in
+/// (0, ray.tMax). Host only; a cheap value type, valid while its EmbreeScene lives.
+struct EmbreeIntersector {
+    RTCSceneTy* scene = nullptr;
+    uint32_t numTriangles = 0;  // primId = primID for geometry 0, numTriangles + primID for 1
+
+    bool intersect(const Ray& ray, Hit& hit) const;
+    bool occluded(const Ray& ray) const;
+};
+
+/// An Embree device and scene built from a Scene: triangles as geometry 0 (RTC_GEOMETRY_TYPE_
+/// TRIANGLE, vertices and indices copied into Embree's padded buffers), spheres as user geometry 1
+/// whose callbacks run caustica's own intersectSphere. Built with RTC_SCENE_FLAG_ROBUST. The
+/// sphere callbacks read `scene.spheres`, so `scene` must outlive this object. Errors reported by
+/// Embree are thrown as caustica::Error.
+class EmbreeScene {
+public:
+    explicit EmbreeScene(const Scene& scene);
+    ~EmbreeScene();
+    EmbreeScene(const EmbreeScene&) = delete;
+    EmbreeScene& operator=(const EmbreeScene&) = delete;
+
+    EmbreeIntersector intersector() const { return EmbreeIntersector{scene_, numTriangles_}; }
+    double buildMilliseconds() const { return buildMilliseconds_; }
+
+private:
+    void check(const char* what);  // throws caustica::Error if the device reports an error
+    void release();
+
+    RTCDeviceTy* device_ = nullptr;
+    RTCSceneTy* scene_ = nullptr;
+    uint32_t numTriangles_ = 0;
+    double buildMilliseconds_ = 0;
+    std::string lastMessage_;  // filled by the device's error callback
+};
+
+}  // namespace caustica

@@ -1,0 +1,112 @@
+// primitive_intersect.h — ray–triangle and ray–sphere tests shared by every traversal (own BVH on
+// CPU and GPU, the brute-force reference in the tests, Embree's sphere callbacks).
+//
+// Conventions: rays need not have unit direction; a hit is accepted only for t in the open interval
+// (0, tMax). Ray origins are expected to be offset off the surface they leave (spawnRay), so no
+// epsilon is applied at t = 0.
+#pragma once
+
+#include <cstdint>
+
+#include "caustica/scene/ray.h"
+#include "caustica/scene/scene.h"
+#include "caustica/util/math.h"
+
+namespace caustica {
+
+/// Ray–triangle intersection in the Möller–Trumbore form (Möller and Trumbore, "Fast, Minimum
+/// Storage Ray/Triangle Intersection", JGT 1997) rewritten with scalar triple products around the
+/// unnormalised geometric normal n = e1 x e2, as Embree's Möller intersector does. By Cramer's rule
+/// on o + t d = p0 + b1 e1 + b2 e2, with c = p0 - o, r = c x d and den = d . n:
+///     t = (c . n) / den,   b1 = (e2 . r) / den,   b2 = -(e1 . r) / den.
+/// Divisions happen only for accepted hits. A zero-area triangle whose cross product is exactly
+/// zero (repeated vertices) has den = 0 and is never hit. `p0` is vertex 0, `e1 = p1 - p0`,
+/// `e2 = p2 - p0`; b1, b2 are the barycentrics of vertices 1 and 2.
+CA_HD_INLINE bool intersectTriangle(Vec3f o, Vec3f d, Float tMax, Vec3f p0, Vec3f e1, Vec3f e2,
+                                    Float& tOut, Float& b1Out, Float& b2Out) {
+    const Vec3f n = cross(e1, e2);
+    const Float den = dot(d, n);
+    const Vec3f c = p0 - o;
+    const Vec3f r = cross(c, d);
+    Float u = dot(e2, r), v = -dot(e1, r), tNum = dot(c, n);
+    Float absDen = den;
+    if (den < 0) {
+        u = -u;
+        v = -v;
+        tNum = -tNum;
+        absDen = -den;
+    }
+    // All comparisons are written so that NaNs (non-finite input) reject.
+    if (!(absDen > 0 && u >= 0 && v >= 0 && u + v <= absDen && tNum > 0)) return false;
+    const Float invDen = 1 / absDen;
+    const Float t = tNum * invDen;
+    if (!(t > 0 && t < tMax)) return false;
+    tOut = t;
+    b1Out = u * invDen;
+    b2Out = v * invDen;
+    return true;
+}
+
+/// Ray–sphere intersection with the numerically robust quadratic of Haines, Günther and
+/// Akenine-Möller, "Precision Improvements for Ray/Sphere Intersection" (Ray Tracing Gems, 2019,
+/// ch. 7): the discriminant is formed from the squared distance between the centre and the line
+/// (eq. 7.5), and the two roots as t0 = c / q, t1 = q / a with q = b' + sign(b') sqrt(disc)
+/// (eq. 7.6), avoiding cancellation. Returns the nearest root in (0, tMax); an origin inside the
+/// sphere gets the far root.
+CA_HD_INLINE bool intersectSphere(Vec3f o, Vec3f d, Float tMax, Vec3f center, Float radius,
+                                  Float& tOut) {
+    const Vec3f f = o - center;
+    const Float a = dot(d, d);
+    const Float bPrime = -dot(f, d);  // -b/2 of a t^2 + b t + c
+    const Float c = dot(f, f) - radius * radius;
+    const Vec3f l = f + d * (bPrime / a);  // centre -> closest point on the line
+    const Float disc = a * (radius * radius - dot(l, l));
+    if (!(disc >= 0)) return false;  // also rejects NaN (a = 0 or non-finite input)
+    const Float q = bPrime + std::copysign(std::sqrt(disc), bPrime);
+    if (q == 0) return false;  // tangent through the origin: both roots are 0
+    Float t0 = c / q, t1 = q / a;
+    if (t0 > t1) {
+        const Float tmp = t0;
+        t0 = t1;
+        t1 = tmp;
+    }
+    if (t0 > 0 && t0 < tMax) {
+        tOut = t0;
+        return true;
+    }
+    if (t1 > 0 && t1 < tMax) {
+        tOut = t1;
+        return true;
+    }
+    return false;
+}
+
+/// Intersects primitive `primId` (triangles first, then spheres) and updates `hit` when the hit is
+/// in (0, min(ray.tMax, hit.t)). Returns true if `hit` was updated. Spheres report b1 = b2 = 0.
+CA_HD_INLINE bool intersectPrimitive(const SceneView& scene, uint32_t primId, const Ray& ray,
+                                     Hit& hit) {
+    const Float tMax = min(ray.tMax, hit.t);
+    const uint32_t numTriangles = scene.numTriangles();
+    if (primId < numTriangles) {
+        const Vec3u tri = scene.triangles[primId];
+        const Vec3f p0 = scene.positions[tri.x];
+        Float t, b1, b2;
+        if (!intersectTriangle(ray.o, ray.d, tMax, p0, scene.positions[tri.y] - p0,
+                               scene.positions[tri.z] - p0, t, b1, b2))
+            return false;
+        hit.t = t;
+        hit.primId = primId;
+        hit.b1 = b1;
+        hit.b2 = b2;
+        return true;
+    }
+    const Sphere& s = scene.spheres[primId - numTriangles];
+    Float t;
+    if (!intersectSphere(ray.o, ray.d, tMax, s.center, s.radius, t)) return false;
+    hit.t = t;
+    hit.primId = primId;
+    hit.b1 = hit.b2 = 0;
+    return true;
+}
+
+}  // namespace caustica

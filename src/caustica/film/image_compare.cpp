@@ -1,0 +1,85 @@
+// image_compare.cpp — error metrics and false-colour error images.
+#include "caustica/film/image_compare.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "caustica/film/colormap.h"
+#include "caustica/util/error.h"
+
+namespace caustica {
+
+namespace {
+
+void checkSameSize(const Image& test, const Image& reference) {
+    if (!test.sameSize(reference))
+        throw Error("cannot compare a " + std::to_string(test.width) + " x " +
+                    std::to_string(test.height) + " image with a " +
+                    std::to_string(reference.width) + " x " + std::to_string(reference.height) +
+                    " reference");
+}
+
+}  // namespace
+
+ErrorMetrics compareImages(const Image& test, const Image& reference) {
+    checkSameSize(test, reference);
+    ErrorMetrics m;
+    m.pixels = test.pixelCount();
+    if (m.pixels == 0) return m;
+    // Sequential double sums: deterministic, and images are small enough.
+    double se = 0, rel = 0, ae = 0;
+    for (size_t i = 0; i < test.rgb.size(); ++i) {
+        const double a = test.rgb[i], b = reference.rgb[i], d = a - b;
+        se += d * d;
+        rel += d * d / (b * b + kRelMseEpsilon);
+        ae += std::fabs(d);
+    }
+    const double n = double(test.rgb.size());
+    m.mse = se / n;
+    m.rmse = std::sqrt(m.mse);
+    m.relMse = rel / n;
+    m.mae = ae / n;
+    return m;
+}
+
+Image falseColourError(const Image& test, const Image& reference, double scale) {
+    checkSameSize(test, reference);
+    const size_t n = test.pixelCount();
+    std::vector<double> err(n);
+    for (size_t i = 0; i < n; ++i) {
+        double e = 0;
+        for (int c = 0; c < 3; ++c) {
+            const double a = test.rgb[3 * i + c], b = reference.rgb[3 * i + c], d = a - b;
+            e += d * d / (b * b + kRelMseEpsilon);
+        }
+        err[i] = e / 3;
+    }
+    if (!(scale > 0)) {
+        // 99th percentile of the finite errors; their maximum if that is 0; else 1.
+        std::vector<double> finite;
+        finite.reserve(n);
+        for (double e : err)
+            if (std::isfinite(e)) finite.push_back(e);
+        scale = 0;
+        if (!finite.empty()) {
+            const size_t k = std::min(finite.size() - 1, size_t(0.99 * double(finite.size())));
+            std::nth_element(finite.begin(), finite.begin() + std::ptrdiff_t(k), finite.end());
+            scale = finite[k];
+            if (!(scale > 0)) scale = *std::max_element(finite.begin(), finite.end());
+        }
+        if (!(scale > 0)) scale = 1;
+    }
+    Image out(test.width, test.height);
+    for (size_t i = 0; i < n; ++i) {
+        const double t = std::isfinite(err[i]) ? std::min(1.0, err[i] / scale) : 1.0;
+        const Spectrum s = viridis(Float(t));
+        out.rgb[3 * i + 0] = s.r;
+        out.rgb[3 * i + 1] = s.g;
+        out.rgb[3 * i + 2] = s.b;
+    }
+    return out;
+}
+
+}  // namespace caustica

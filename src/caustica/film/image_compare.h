@@ -1,0 +1,35 @@
+// image_compare.h — error metrics between a rendered image and a reference, and a false-colour
+// visualisation of where they differ.
+#pragma once
+
+#include <cstddef>
+
+#include "caustica/film/image.h"
+
+namespace caustica {
+
+/// Errors of a test image against a reference, averaged over all pixels and RGB channels:
+///   mse    = mean (a - b)^2              rmse = sqrt(mse)
+///   relMse = mean (a - b)^2 / (b^2 + 0.01)   (b: the reference; Rousselle et al. 2011)
+///   mae    = mean |a - b|
+/// `pixels` is the number of pixels compared.
+struct ErrorMetrics {
+    double mse = 0, rmse = 0, relMse = 0, mae = 0;
+    size_t pixels = 0;
+};
+
+/// Offset in relMse's denominator, which keeps dark reference pixels from dominating.
+inline constexpr double kRelMseEpsilon = 0.01;
+
+/// Compares `test` against `reference`; throws caustica::Error when their sizes differ. Metrics
+/// are NaN when either image holds NaN: a broken render never compares as close.
+ErrorMetrics compareImages(const Image& test, const Image& reference);
+
+/// Per-pixel relative squared error (the relMse term averaged over the 3 channels) mapped to
+/// viridis, in linear RGB (ready for writeImage's sRGB PNG). `scale` is the error shown as the
+/// top of the colormap; 0 (or negative) chooses the 99th percentile of the per-pixel errors (their
+/// maximum if that is 0). Non-finite errors map to the top. Throws caustica::Error when the sizes
+/// differ.
+Image falseColourError(const Image& test, const Image& reference, double scale = 0);
+
+}  // namespace caustica

@@ -1,0 +1,426 @@
+// image_io.cpp — OpenEXR (via OpenEXR 3), PFM (by hand) and PNG (via stb) reading and writing.
+#include "caustica/io/image_io.h"
+
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStringAttribute.h>
+#include <stb_image.h>
+#include <stb_image_write.h>
+
+#include <algorithm>
+#include <bit>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <vector>
+
+#include "caustica/util/error.h"
+
+namespace caustica {
+
+namespace {
+
+using Bytes = std::vector<unsigned char>;
+
+enum class Format { Exr, Pfm, Png };
+
+Format formatOf(const std::string& path) {
+    const std::string name = std::filesystem::path(path).filename().string();
+    const size_t dot = name.rfind('.');
+    std::string ext = dot == std::string::npos ? "" : name.substr(dot + 1);
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (ext == "exr") return Format::Exr;
+    if (ext == "pfm") return Format::Pfm;
+    if (ext == "png") return Format::Png;
+    throw Error(path, 0, "unknown image file extension '" + ext + "' (expected .exr, .pfm, .png)");
+}
+
+void checkSize(const std::string& path, int64_t w, int64_t h) {
+    if (w <= 0 || h <= 0 || uint64_t(w) * uint64_t(h) > kMaxImagePixels)
+        throw Error(
+            path, 0,
+            "corrupt header: absurd image size " + std::to_string(w) + " x " + std::to_string(h));
+}
+
+Bytes readFile(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(path, 0, "cannot open file for reading (missing or unreadable)");
+    Bytes data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (in.bad()) throw Error(path, 0, "read error");
+    return data;
+}
+
+void requireReadable(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(path, 0, "cannot open file for reading (missing or unreadable)");
+}
+
+std::string stbReason() {
+    const char* r = stbi_failure_reason();
+    return r && *r ? r : "decoding failed";
+}
+
+uint32_t readBe32(const unsigned char* p) {
+    return uint32_t(p[0]) << 24 | uint32_t(p[1]) << 16 | uint32_t(p[2]) << 8 | uint32_t(p[3]);
+}
+
+void appendBe32(Bytes& out, uint32_t v) {
+    for (int s = 24; s >= 0; s -= 8) out.push_back(static_cast<unsigned char>(v >> s));
+}
+
+// ---- OpenEXR ----------------------------------------------------------------------------------
+
+void writeExr(const std::string& path, const Image& image, const ImageMetadata& metadata) {
+    Imf::Header header(image.width, image.height);
+    header.compression() = Imf::ZIP_COMPRESSION;
+    for (const char* c : {"R", "G", "B"}) header.channels().insert(c, Imf::Channel(Imf::FLOAT));
+    static const char* const kReserved[] = {"tiles",   "type",       "name",
+                                            "version", "chunkCount", "maxSamplesPerPixel",
+                                            "view",    "multiView"};
+    for (const auto& [key, value] : metadata.entries) {
+        bool reserved = false;
+        for (const char* r : kReserved) reserved = reserved || key == r;
+        if (key.empty() || reserved || header.find(key) != header.end())
+            throw Error(path, 0, "metadata key '" + key + "' is empty or a reserved EXR attribute");
+        header.insert(key, Imf::StringAttribute(value));
+    }
+    Imf::OutputFile file(path.c_str(), header);
+    Imf::FrameBuffer fb;
+    const size_t xs = 3 * sizeof(float), ys = xs * size_t(image.width);
+    const char* base = reinterpret_cast<const char*>(image.rgb.data());
+    fb.insert("R", Imf::Slice(Imf::FLOAT, const_cast<char*>(base + 0), xs, ys));
+    fb.insert("G", Imf::Slice(Imf::FLOAT, const_cast<char*>(base + 4), xs, ys));
+    fb.insert("B", Imf::Slice(Imf::FLOAT, const_cast<char*>(base + 8), xs, ys));
+    file.setFrameBuffer(fb);
+    file.writePixels(image.height);
+}
+
+Image readExr(const std::string& path) {
+    requireReadable(path);
+    Imf::InputFile file(path.c_str());
+    const Imath::Box2i dw = file.header().dataWindow();
+    const int64_t w = int64_t(dw.max.x) - dw.min.x + 1, h = int64_t(dw.max.y) - dw.min.y + 1;
+    checkSize(path, w, h);
+    const Imf::ChannelList& channels = file.header().channels();
+    const bool rgb =
+        channels.findChannel("R") && channels.findChannel("G") && channels.findChannel("B");
+    const bool grey = channels.findChannel("Y") != nullptr;
+    if (!rgb && grey && (channels.findChannel("RY") || channels.findChannel("BY")))
+        throw Error(path, 0, "luminance/chroma (Y, RY, BY) EXR images are not supported");
+    if (!rgb && !grey) {
+        std::string names;
+        for (auto it = channels.begin(); it != channels.end(); ++it)
+            names += std::string(names.empty() ? "" : ", ") + it.name();
+        throw Error(path, 0, "no R, G, B or Y channels (found: " + names + ")");
+    }
+    Image image{int(w), int(h)};
+    Imf::FrameBuffer fb;
+    const size_t xs = 3 * sizeof(float);
+    char* base = reinterpret_cast<char*>(image.rgb.data());
+    if (rgb) {
+        fb.insert("R", Imf::Slice::Make(Imf::FLOAT, base + 0, dw, xs, xs * size_t(w)));
+        fb.insert("G", Imf::Slice::Make(Imf::FLOAT, base + 4, dw, xs, xs * size_t(w)));
+        fb.insert("B", Imf::Slice::Make(Imf::FLOAT, base + 8, dw, xs, xs * size_t(w)));
+    } else {
+        fb.insert("Y", Imf::Slice::Make(Imf::FLOAT, base, dw, xs, xs * size_t(w)));
+    }
+    file.setFrameBuffer(fb);
+    if (!file.isComplete()) throw Error(path, 0, "truncated data: the file is incomplete");
+    file.readPixels(dw.min.y, dw.max.y);
+    if (!rgb)
+        for (size_t i = 0; i < image.pixelCount(); ++i)
+            image.rgb[3 * i + 1] = image.rgb[3 * i + 2] = image.rgb[3 * i];
+    return image;
+}
+
+ImageMetadata readExrMetadata(const std::string& path) {
+    requireReadable(path);
+    Imf::InputFile file(path.c_str());
+    ImageMetadata metadata;
+    for (auto it = file.header().begin(); it != file.header().end(); ++it)
+        if (std::strcmp(it.attribute().typeName(), Imf::StringAttribute::staticTypeName()) == 0)
+            metadata.entries[it.name()] =
+                static_cast<const Imf::StringAttribute&>(it.attribute()).value();
+    return metadata;
+}
+
+// ---- PFM --------------------------------------------------------------------------------------
+
+float toLittleEndianFloat(float v, bool swap) {
+    if (!swap) return v;
+    uint32_t u;
+    std::memcpy(&u, &v, 4);
+    u = (u >> 24) | ((u >> 8) & 0xff00u) | ((u << 8) & 0xff0000u) | (u << 24);
+    std::memcpy(&v, &u, 4);
+    return v;
+}
+
+void writePfm(const std::string& path, const Image& image) {
+    std::ofstream out(path, std::ios::binary);
+    if (!out) throw Error(path, 0, "cannot open file for writing");
+    out << "PF\n" << image.width << " " << image.height << "\n-1.0\n";
+    const bool swap = std::endian::native == std::endian::big;
+    std::vector<float> row(3 * size_t(image.width));
+    for (int y = image.height - 1; y >= 0; --y) {  // PFM stores the bottom row first
+        const float* src = image.pixel(0, y);
+        for (size_t i = 0; i < row.size(); ++i) row[i] = toLittleEndianFloat(src[i], swap);
+        out.write(reinterpret_cast<const char*>(row.data()), std::streamsize(row.size() * 4));
+    }
+    out.close();
+    if (!out) throw Error(path, 0, "write error");
+}
+
+Image readPfm(const std::string& path) {
+    const Bytes data = readFile(path);
+    size_t pos = 0;
+    // Header: three whitespace-separated tokens after the type, then exactly one whitespace.
+    auto token = [&](const char* what) {
+        while (pos < data.size() && std::isspace(data[pos])) ++pos;
+        std::string t;
+        while (pos < data.size() && !std::isspace(data[pos]) && t.size() < 64)
+            t += char(data[pos++]);
+        if (t.empty() || pos >= data.size() || !std::isspace(data[pos]))
+            throw Error(path, 0, std::string("corrupt header: bad or missing ") + what);
+        return t;
+    };
+    if (data.size() < 2 || data[0] != 'P' || (data[1] != 'F' && data[1] != 'f'))
+        throw Error(path, 0, "corrupt header: not a PFM file (expected 'PF' or 'Pf')");
+    const int channels = data[1] == 'F' ? 3 : 1;
+    pos = 2;
+    if (pos >= data.size() || !std::isspace(data[pos]))
+        throw Error(path, 0, "corrupt header: not a PFM file (expected 'PF' or 'Pf')");
+    auto number = [&](const std::string& t, const char* what) {
+        char* end = nullptr;
+        const double v = std::strtod(t.c_str(), &end);
+        if (end != t.c_str() + t.size() || !std::isfinite(v))
+            throw Error(path, 0, std::string("corrupt header: bad ") + what + " '" + t + "'");
+        return v;
+    };
+    const double w = number(token("width"), "width"), h = number(token("height"), "height");
+    const double scale = number(token("scale"), "scale");
+    ++pos;  // the single whitespace character before the raster
+    if (w != std::floor(w) || h != std::floor(h) || w > 1e9 || h > 1e9)
+        throw Error(path, 0, "corrupt header: bad image size");
+    checkSize(path, int64_t(w), int64_t(h));
+    if (scale == 0) throw Error(path, 0, "corrupt header: scale must not be 0");
+    const size_t width = size_t(w), height = size_t(h), rowFloats = width * size_t(channels);
+    const size_t need = rowFloats * height * 4;
+    if (data.size() - pos < need)
+        throw Error(path, 0,
+                    "truncated data: " + std::to_string(data.size() - pos) +
+                        " bytes of pixels, expected " + std::to_string(need));
+    const bool swap = (scale < 0) != (std::endian::native == std::endian::little);
+    const float mul = float(std::fabs(scale));
+    Image image{int(width), int(height)};
+    for (size_t fy = 0; fy < height; ++fy) {
+        float* dst = image.pixel(0, int(height - 1 - fy));
+        for (size_t x = 0; x < width; ++x) {
+            for (int c = 0; c < 3; ++c) {
+                const size_t i = fy * rowFloats + x * size_t(channels) + size_t(c % channels);
+                float v;
+                std::memcpy(&v, data.data() + pos + 4 * i, 4);
+                v = toLittleEndianFloat(v, swap);
+                dst[3 * x + size_t(c)] = mul == 1.0f ? v : v * mul;
+            }
+        }
+    }
+    return image;
+}
+
+// ---- PNG --------------------------------------------------------------------------------------
+
+uint32_t crc32(const unsigned char* p, size_t n, uint32_t crc = 0) {
+    crc = ~crc;
+    for (size_t i = 0; i < n; ++i) {
+        crc ^= p[i];
+        for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+    }
+    return ~crc;
+}
+
+bool validPngKeyword(const std::string& k) {
+    // PNG 11.3.4.3: 1-79 Latin-1 printable characters, no leading/trailing/double spaces.
+    if (k.empty() || k.size() > 79 || k.front() == ' ' || k.back() == ' ') return false;
+    for (size_t i = 0; i < k.size(); ++i) {
+        const unsigned char c = static_cast<unsigned char>(k[i]);
+        if (c < 32 || (c > 126 && c < 161)) return false;
+        if (c == ' ' && i > 0 && k[i - 1] == ' ') return false;
+    }
+    return true;
+}
+
+void writePng(const std::string& path, const Image& image, const ImageMetadata& metadata) {
+    std::vector<unsigned char> pixels(image.rgb.size());
+    for (size_t i = 0; i < pixels.size(); ++i)
+        pixels[i] = static_cast<unsigned char>(std::lround(linearToSrgb(image.rgb[i]) * 255.0f));
+    Bytes png;
+    auto sink = [](void* ctx, void* data, int size) {
+        auto* out = static_cast<Bytes*>(ctx);
+        const auto* p = static_cast<const unsigned char*>(data);
+        out->insert(out->end(), p, p + size);
+    };
+    if (!stbi_write_png_to_func(sink, &png, image.width, image.height, 3, pixels.data(),
+                                3 * image.width) ||
+        png.size() < 33)
+        throw Error(path, 0, "PNG encoding failed");
+    // tEXt chunks go right after the signature (8 bytes) and IHDR (25 bytes).
+    Bytes text;
+    for (const auto& [key, value] : metadata.entries) {
+        if (!validPngKeyword(key) || value.find('\0') != std::string::npos)
+            throw Error(path, 0, "metadata key '" + key + "' is not a valid PNG text keyword");
+        Bytes chunk = {'t', 'E', 'X', 't'};
+        chunk.insert(chunk.end(), key.begin(), key.end());
+        chunk.push_back(0);
+        chunk.insert(chunk.end(), value.begin(), value.end());
+        appendBe32(text, uint32_t(chunk.size() - 4));
+        text.insert(text.end(), chunk.begin(), chunk.end());
+        appendBe32(text, crc32(chunk.data(), chunk.size()));
+    }
+    png.insert(png.begin() + 33, text.begin(), text.end());
+    std::ofstream out(path, std::ios::binary);
+    if (!out) throw Error(path, 0, "cannot open file for writing");
+    out.write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
+    out.close();
+    if (!out) throw Error(path, 0, "write error");
+}
+
+Image readPng(const std::string& path) {
+    const Bytes data = readFile(path);
+    if (data.size() > size_t(INT32_MAX)) throw Error(path, 0, "file too large");
+    const int size = int(data.size());
+    int w = 0, h = 0, n = 0;
+    if (!stbi_info_from_memory(data.data(), size, &w, &h, &n))
+        throw Error(path, 0, std::string("corrupt header: ") + stbReason());
+    checkSize(path, w, h);
+    Image image(w, h);
+    if (stbi_is_16_bit_from_memory(data.data(), size)) {
+        std::unique_ptr<stbi_us, void (*)(void*)> p(
+            stbi_load_16_from_memory(data.data(), size, &w, &h, &n, 3), stbi_image_free);
+        if (!p) throw Error(path, 0, std::string("corrupt or truncated data: ") + stbReason());
+        for (size_t i = 0; i < image.rgb.size(); ++i)
+            image.rgb[i] = srgbToLinear(float(p.get()[i]) / 65535.0f);
+    } else {
+        std::unique_ptr<stbi_uc, void (*)(void*)> p(
+            stbi_load_from_memory(data.data(), size, &w, &h, &n, 3), stbi_image_free);
+        if (!p) throw Error(path, 0, std::string("corrupt or truncated data: ") + stbReason());
+        for (size_t i = 0; i < image.rgb.size(); ++i)
+            image.rgb[i] = srgbToLinear(float(p.get()[i]) / 255.0f);
+    }
+    return image;
+}
+
+ImageMetadata readPngMetadata(const std::string& path) {
+    const Bytes data = readFile(path);
+    static const unsigned char kSignature[8] = {137, 80, 78, 71, 13, 10, 26, 10};
+    if (data.size() < 8 || std::memcmp(data.data(), kSignature, 8) != 0)
+        throw Error(path, 0, "corrupt header: not a PNG file");
+    ImageMetadata metadata;
+    size_t pos = 8;
+    while (pos + 12 <= data.size()) {
+        const size_t len = readBe32(data.data() + pos);
+        if (len > data.size() - pos - 12)
+            throw Error(path, 0, "truncated data: chunk overruns file");
+        const unsigned char* type = data.data() + pos + 4;
+        const unsigned char* body = type + 4;
+        if (std::memcmp(type, "tEXt", 4) == 0) {
+            const auto* zero = static_cast<const unsigned char*>(std::memchr(body, 0, len));
+            if (zero) metadata.entries[std::string(body, zero)] = std::string(zero + 1, body + len);
+        }
+        if (std::memcmp(type, "IEND", 4) == 0) break;
+        pos += 12 + len;
+    }
+    return metadata;
+}
+
+// Runs `body`, turning library exceptions into caustica::Error naming the file.
+template <class F>
+auto guarded(const std::string& path, F&& body) -> decltype(body()) {
+    try {
+        return body();
+    } catch (const Error&) {
+        throw;
+    } catch (const std::exception& e) {
+        std::string reason = e.what();  // the CLI prints errors on one line
+        std::replace(reason.begin(), reason.end(), '\n', ' ');
+        throw Error(path, 0, reason);
+    }
+}
+
+}  // namespace
+
+void writeImage(const std::string& path, const Image& image, const ImageMetadata& metadata) {
+    const Format format = formatOf(path);
+    if (image.width <= 0 || image.height <= 0 || image.rgb.size() != 3 * image.pixelCount())
+        throw Error(path, 0,
+                    "cannot write an empty or inconsistent image (" + std::to_string(image.width) +
+                        " x " + std::to_string(image.height) + ", " +
+                        std::to_string(image.rgb.size()) + " floats)");
+    // Write under a temporary name (same extension, so format detection is unaffected), then
+    // rename into place.
+    const std::string tmp = path + ".partial" + std::filesystem::path(path).extension().string();
+    guarded(path, [&] {
+        try {
+            switch (format) {
+                case Format::Exr:
+                    writeExr(tmp, image, metadata);
+                    break;
+                case Format::Pfm:
+                    writePfm(tmp, image);
+                    break;
+                case Format::Png:
+                    writePng(tmp, image, metadata);
+                    break;
+            }
+            std::filesystem::rename(tmp, path);
+        } catch (const Error& e) {
+            std::error_code ec;
+            std::filesystem::remove(tmp, ec);
+            throw Error(path, 0, e.reason());
+        } catch (...) {
+            std::error_code ec;
+            std::filesystem::remove(tmp, ec);
+            throw;
+        }
+    });
+}
+
+Image readImage(const std::string& path) {
+    const Format format = formatOf(path);
+    return guarded(path, [&] {
+        switch (format) {
+            case Format::Exr:
+                return readExr(path);
+            case Format::Pfm:
+                return readPfm(path);
+            case Format::Png:
+                return readPng(path);
+        }
+        return Image();
+    });
+}
+
+ImageMetadata readImageMetadata(const std::string& path) {
+    const Format format = formatOf(path);
+    return guarded(path, [&] {
+        switch (format) {
+            case Format::Exr:
+                return readExrMetadata(path);
+            case Format::Pfm:
+                requireReadable(path);
+                return ImageMetadata();
+            case Format::Png:
+                return readPngMetadata(path);
+        }
+        return ImageMetadata();
+    });
+}
+
+}  // namespace caustica

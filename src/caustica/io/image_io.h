@@ -1,0 +1,39 @@
+// image_io.h — reading and writing images: OpenEXR, PFM and PNG, chosen by file extension.
+//
+//   .exr  write: float32 R, G, B, ZIP compression, metadata as string attributes.
+//         read:  half, float or uint R,G,B (alpha ignored) or Y-only (grey), data window.
+//   .pfm  write: "PF", little-endian, rows bottom to top as the format requires.
+//         read:  "PF" (colour) and "Pf" (grey), either byte order, scaled by |scale|.
+//   .png  write: 8-bit sRGB (transfer function applied, clamped to [0, 1]), metadata as tEXt.
+//         read:  8- or 16-bit grey / RGB (alpha ignored), decoded from sRGB to linear.
+//
+// Every failure (missing file, unknown extension, corrupt header, truncated data, absurd size,
+// write error) throws caustica::Error naming the file and the reason.
+#pragma once
+
+#include <map>
+#include <string>
+
+#include "caustica/film/image.h"
+
+namespace caustica {
+
+/// Key/value annotations stored with an image (spp, render time, integrator, seed, ...): EXR
+/// string attributes, PNG tEXt chunks; PFM has no room for them (ignored on write).
+struct ImageMetadata {
+    std::map<std::string, std::string> entries;
+};
+
+/// Writes `image` to `path` in the format its extension names (.exr, .pfm, .png, any case). The
+/// file is written under a temporary name and renamed into place, so a failed write never
+/// leaves a half-written image behind. Metadata keys that clash with the format's own fields
+/// (e.g. EXR "compression") are refused.
+void writeImage(const std::string& path, const Image& image, const ImageMetadata& metadata = {});
+
+/// Reads an image, linear RGB.
+Image readImage(const std::string& path);
+
+/// Reads an image's metadata: EXR string attributes, PNG tEXt chunks; PFM: always empty.
+ImageMetadata readImageMetadata(const std::string& path);
+
+}  // namespace caustica

@@ -1,0 +1,205 @@
+// light.h — sampling and evaluation of the closed list of emitters (light_data.h). Shared
+// CPU/GPU kernel code with Mitsuba 3's semantics: lights are selected uniformly, area emitters
+// emit on the front side of their shape only, the constant environment from every direction.
+// Needs finalizeLights (light_setup.h) to have run on the scene.
+#pragma once
+
+#include "caustica/scene/interaction.h"
+#include "caustica/util/sampling.h"
+
+namespace caustica {
+
+/// One sampled point (or direction) on a light, as seen from a reference point.
+struct LightSample {
+    Vec3f p;          // point on the light (for the environment: a point 2 scene radii away)
+    Vec3f n;          // normal at p (zero for point and environment lights)
+    Vec3f wi;         // unit, from the reference point towards the light
+    Float dist = 0;   // distance to p, kInfinity for the environment
+    Spectrum Le;      // radiance for area/environment, intensity / dist² for a point light
+    Float pdf = 0;    // solid-angle pdf at ref incl. light selection; for delta lights the
+                      // selection probability
+    bool delta = false;
+    uint32_t light = 0;
+};
+
+namespace light_detail {
+
+/// Uniform light selection (as Mitsuba's default emitter sampling).
+CA_HD_INLINE Float selectionPdf(const SceneView& scene) {
+    return scene.lights.empty() ? Float(0) : Float(1) / Float(scene.lights.size());
+}
+
+/// Visible cone of a sphere from a point outside it: 1 - cosθmax with sinθmax = r / |c - p|,
+/// computed as sin²θmax / (1 + cosθmax) to avoid cancellation for small cones. Returns false
+/// (cone undefined) when `p` is inside or on the sphere: area sampling is used there.
+CA_HD_INLINE bool sphereCone(const Sphere& s, Vec3f p, Float& oneMinusCosMax, Float& distC) {
+    const Float dc2 = lengthSquared(s.center - p);
+    const Float r2 = s.radius * s.radius;
+    if (!(dc2 > r2)) return false;
+    const Float sin2Max = r2 / dc2;
+    oneMinusCosMax = sin2Max / (1 + safeSqrt(1 - sin2Max));
+    distC = std::sqrt(dc2);
+    return true;
+}
+
+/// Sphere light from outside: a direction uniform in the visible cone and the point it hits
+/// (pbrt-v4, Sphere::Sample(ShapeSampleContext), after Akalin's "sampling the visible sphere").
+CA_HD_INLINE void sampleSphereCone(const Sphere& s, Vec3f refP, Float omc, Float distC, Vec2f u,
+                                   Vec3f& p, Vec3f& outward) {
+    const Float sinThetaMax = s.radius / distC;
+    const Float v = u.x * omc;
+    const Float sin2Theta = v * (2 - v), cosTheta = 1 - v;
+    // Angle α at the sphere's centre between the axis and the sampled point (law of sines).
+    const Float cosAlpha = sin2Theta / sinThetaMax +
+                           cosTheta * safeSqrt(1 - sin2Theta / (sinThetaMax * sinThetaMax));
+    const Float sinAlpha = safeSqrt(1 - cosAlpha * cosAlpha);
+    const Float phi = 2 * kPi * u.y;
+    const Frame frame((s.center - refP) * (1 / distC));
+    outward = frame.toWorld(Vec3f(-sinAlpha * std::cos(phi), -sinAlpha * std::sin(phi), -cosAlpha));
+    outward = normalize(outward);
+    p = s.center + outward * s.radius;
+}
+
+/// Solid-angle pdf of a point `p` with front normal `n` sampled uniformly by area on a surface of
+/// total area `area` (dω = |cosθ| dA / r²); 0 when p faces away from ref.
+CA_HD_INLINE Float areaToSolidAngle(Vec3f refP, Vec3f p, Vec3f n, Float area) {
+    const Vec3f d = p - refP;
+    const Float d2 = lengthSquared(d);
+    if (!(d2 > 0)) return 0;
+    const Float cosL = -dot(d, n) / std::sqrt(d2);
+    if (!(cosL > 0)) return 0;  // back side of a one-sided emitter
+    return d2 / (cosL * area);
+}
+
+}  // namespace light_detail
+
+/// Samples a light as seen from `refP`: `uSelect` picks the light, `u` the point on it.
+/// Returns false if there is nothing to sample (no lights, back side, zero pdf).
+CA_HD_INLINE bool sampleLight(const SceneView& scene, Vec3f refP, Float uSelect, Vec2f u,
+                              LightSample& out) {
+    const uint32_t n = uint32_t(scene.lights.size());
+    if (n == 0) return false;
+    const uint32_t index = min(uint32_t(uSelect * Float(n)), n - 1);
+    const Float selPdf = Float(1) / Float(n);
+    const Light& light = scene.lights[index];
+    out.light = index;
+    out.delta = false;
+    out.n = Vec3f(0);
+
+    switch (light.type) {
+        case LightType::Point: {
+            const Vec3f d = light.position - refP;
+            const Float d2 = lengthSquared(d);
+            if (!(d2 > 0)) return false;
+            out.p = light.position;
+            out.dist = std::sqrt(d2);
+            out.wi = d * (1 / out.dist);
+            out.Le = light.radiance * (1 / d2);
+            out.pdf = selPdf;
+            out.delta = true;
+            return true;
+        }
+        case LightType::Constant: {
+            out.wi = sampleUniformSphere(u);
+            out.p = refP + out.wi * (2 * light.sceneRadius);
+            out.dist = kInfinity;
+            out.Le = light.radiance;
+            out.pdf = uniformSpherePdf() * selPdf;
+            return true;
+        }
+        case LightType::Area:
+            break;
+    }
+
+    // Area light: a point on the shape and its front normal.
+    const Shape& shape = scene.shapes[light.shape];
+    Float pdf;
+    if (shape.type == ShapeType::Mesh) {
+        // Triangle by area (reusing u.x, rescaled, so that u stays stratified), then a uniform
+        // point on it: the area density is 1 / total area.
+        const Span<const float> cdf(scene.lightCdf.data() + light.cdfOffset, light.cdfCount);
+        Float triPdf;
+        const uint32_t tri = sampleDiscreteCdf(cdf, u.x, &triPdf);
+        if (!(triPdf > 0)) return false;
+        const Float lo = tri > 0 ? cdf[tri - 1] : 0.0f;
+        const Float ux = min((u.x - lo) / triPdf, kOneMinusEpsilon);
+        const Vec2f b = sampleUniformTriangle(Vec2f(max(ux, Float(0)), u.y));
+        Hit hit;
+        hit.t = 0;
+        hit.primId = shape.primOffset + tri;
+        hit.b1 = b.x;
+        hit.b2 = b.y;
+        // The same point and front normal as a ray hit would produce (flip_normals included).
+        const SurfaceInteraction si = computeInteraction(scene, Ray{refP, Vec3f(0), 0}, hit);
+        out.p = si.p;
+        out.n = si.ng;
+        pdf = light_detail::areaToSolidAngle(refP, out.p, out.n, light.area);
+    } else {
+        const Sphere& s = scene.spheres[shape.primOffset];
+        Float omc, distC;
+        Vec3f outward;
+        if (light_detail::sphereCone(s, refP, omc, distC)) {
+            light_detail::sampleSphereCone(s, refP, omc, distC, u, out.p, outward);
+            out.n = shape.flipNormals ? -outward : outward;
+            pdf = dot(out.p - refP, out.n) < 0 ? uniformConePdfOmc(omc) : Float(0);
+        } else {
+            outward = sampleUniformSphere(u);  // inside: uniform by area
+            out.p = s.center + outward * s.radius;
+            out.n = shape.flipNormals ? -outward : outward;
+            pdf = light_detail::areaToSolidAngle(refP, out.p, out.n, light.area);
+        }
+    }
+    if (!(pdf > 0) || !std::isfinite(pdf)) return false;
+
+    const Vec3f d = out.p - refP;
+    out.dist = length(d);
+    if (!(out.dist > 0)) return false;
+    out.wi = d * (1 / out.dist);
+    out.Le = light.radiance;
+    out.pdf = pdf * selPdf;
+    return true;
+}
+
+/// Solid-angle pdf (incl. selection) with which sampleLight would pick the point `onLight` of
+/// area light `light` from `refP`: the MIS weight of an emitter hit by BSDF sampling.
+CA_HD_INLINE Float pdfAreaLight(const SceneView& scene, uint32_t light, Vec3f refP,
+                                const SurfaceInteraction& onLight) {
+    if (light >= scene.lights.size()) return 0;
+    const Light& l = scene.lights[light];
+    if (l.type != LightType::Area) return 0;
+    const Shape& shape = scene.shapes[l.shape];
+    const Float selPdf = light_detail::selectionPdf(scene);
+    if (shape.type == ShapeType::Sphere) {
+        const Sphere& s = scene.spheres[shape.primOffset];
+        Float omc, distC;
+        if (light_detail::sphereCone(s, refP, omc, distC))
+            return dot(onLight.p - refP, onLight.ng) < 0 ? uniformConePdfOmc(omc) * selPdf : 0;
+    }
+    return light_detail::areaToSolidAngle(refP, onLight.p, onLight.ng, l.area) * selPdf;
+}
+
+/// Solid-angle pdf (incl. selection) of sampling direction `dir` from the environment light.
+CA_HD_INLINE Float pdfEnvironmentLight(const SceneView& scene, Vec3f /*dir*/) {
+    if (scene.environmentLight < 0) return 0;
+    return uniformSpherePdf() * light_detail::selectionPdf(scene);
+}
+
+/// Radiance an area emitter sends from `si` towards `w` (unit, away from the surface): zero on
+/// the back side (w·ng <= 0) or when the shape does not emit.
+CA_HD_INLINE Spectrum emittedRadiance(const SceneView& scene, const SurfaceInteraction& si,
+                                      Vec3f w) {
+    const Shape& shape = scene.shapes[si.shape];
+    if (shape.light < 0) return {};
+    const Light& light = scene.lights[uint32_t(shape.light)];
+    if (light.type != LightType::Area || dot(w, si.ng) <= 0) return {};
+    return light.radiance;
+}
+
+/// Radiance arriving from the environment along -dir (dir points away from the scene); zero
+/// when the scene has no environment light.
+CA_HD_INLINE Spectrum environmentRadiance(const SceneView& scene, Vec3f /*dir*/) {
+    if (scene.environmentLight < 0) return {};
+    return scene.lights[uint32_t(scene.environmentLight)].radiance;
+}
+
+}  // namespace caustica

@@ -1,0 +1,109 @@
+// light_setup.cpp — derived light data computed once on the host after the scene is built:
+// triangle-area CDFs and areas of area emitters, and the environment's scene bounding sphere.
+#include "caustica/scene/light_setup.h"
+
+#include <cmath>
+#include <string>
+
+#include "caustica/util/error.h"
+
+namespace caustica {
+
+namespace {
+
+/// Area of triangle `t` of the scene, in double precision.
+double triangleArea(const Scene& scene, uint32_t t) {
+    const Vec3u& tri = scene.triangles[t];
+    const Vec3f& p0 = scene.positions[tri.x];
+    const Vec3f& p1 = scene.positions[tri.y];
+    const Vec3f& p2 = scene.positions[tri.z];
+    const double e1[3] = {double(p1.x) - p0.x, double(p1.y) - p0.y, double(p1.z) - p0.z};
+    const double e2[3] = {double(p2.x) - p0.x, double(p2.y) - p0.y, double(p2.z) - p0.z};
+    const double c[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                         e1[0] * e2[1] - e1[1] * e2[0]};
+    return 0.5 * std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+}
+
+[[noreturn]] void fail(size_t light, const std::string& reason) {
+    throw Error("light " + std::to_string(light) + ": " + reason);
+}
+
+/// Area light on a mesh: appends the normalised cumulative triangle areas to scene.lightCdf.
+void setupMeshLight(Scene& scene, Light& light, const Shape& shape, size_t index) {
+    if (size_t(shape.primOffset) + shape.primCount > scene.triangles.size())
+        fail(index, "emitting mesh references triangles out of range");
+    double total = 0;
+    for (uint32_t i = 0; i < shape.primCount; ++i)
+        total += triangleArea(scene, shape.primOffset + i);
+    if (!(total > 0) || !std::isfinite(total))
+        throw Error("area emitter on a shape with zero area");
+
+    light.cdfOffset = uint32_t(scene.lightCdf.size());
+    light.cdfCount = shape.primCount;
+    double sum = 0;
+    for (uint32_t i = 0; i < shape.primCount; ++i) {
+        sum += triangleArea(scene, shape.primOffset + i);
+        scene.lightCdf.push_back(float(sum / total));
+    }
+    scene.lightCdf.back() = 1.0f;  // exactly 1, whatever the rounding
+    light.area = Float(total);
+}
+
+void setupSphereLight(const Scene& scene, Light& light, const Shape& shape, size_t index) {
+    if (shape.primOffset >= scene.spheres.size())
+        fail(index, "emitting sphere references a sphere out of range");
+    const double r = scene.spheres[shape.primOffset].radius;
+    const double area = 4.0 * double(kPi) * r * r;
+    if (!(area > 0) || !std::isfinite(area))
+        throw Error("area emitter on a shape with zero area");
+    light.area = Float(area);
+    light.cdfOffset = 0;
+    light.cdfCount = 0;
+}
+
+/// Mitsuba's constant emitter: the bounding sphere of the scene's bounding box, slightly enlarged
+/// and never of zero radius (math::RayEpsilon = 1500 float epsilons).
+void setupEnvironment(const Scene& scene, Light& light) {
+    constexpr Float kRayEpsilon = 1500 * 5.96046448e-8f;
+    const Bounds3f b = scene.bounds();
+    if (b.empty()) {
+        light.sceneCenter = Vec3f(0);
+        light.sceneRadius = 1;  // nothing to enclose: any positive radius serves
+        return;
+    }
+    light.sceneCenter = b.center();
+    const Float r = 0.5f * length(b.diagonal());
+    light.sceneRadius = max(kRayEpsilon, r * (1 + kRayEpsilon));
+}
+
+}  // namespace
+
+void finalizeLights(Scene& scene) {
+    scene.lightCdf.clear();
+    scene.environmentLight = -1;
+    for (size_t i = 0; i < scene.lights.size(); ++i) {
+        Light& light = scene.lights[i];
+        switch (light.type) {
+            case LightType::Area: {
+                if (light.shape >= scene.shapes.size())
+                    fail(i, "area emitter references a shape out of range");
+                const Shape& shape = scene.shapes[light.shape];
+                if (shape.type == ShapeType::Mesh)
+                    setupMeshLight(scene, light, shape, i);
+                else
+                    setupSphereLight(scene, light, shape, i);
+                break;
+            }
+            case LightType::Constant:
+                if (scene.environmentLight >= 0)
+                    fail(i, "more than one environment (constant) emitter in the scene");
+                scene.environmentLight = int32_t(i);
+                setupEnvironment(scene, light);
+                break;
+            case LightType::Point:
+                break;
+        }
+    }
+}
+
+}  // namespace caustica

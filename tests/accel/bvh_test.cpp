@@ -1,0 +1,199 @@
+// The own BVH against the brute-force reference, plus build determinism and statistics.
+#include <algorithm>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include "accel/test_scenes.h"
+#include "caustica/accel/bvh.h"
+#include "caustica/accel/bvh_traversal.h"
+
+namespace caustica {
+namespace {
+
+/// Casts `numRays` random rays and requires the BVH to agree with brute force exactly: same hit or
+/// miss, same t bit for bit; a different primId only when it is hit at the very same t (a tie).
+void expectMatchesBruteForce(const Scene& scene, const BvhBuildOptions& options, uint32_t numRays,
+                             uint64_t seed) {
+    const Bvh bvh = buildBvh(scene, options);
+    const SceneView view = scene.view();
+    const BvhView bvhView = bvh.view();
+    uint32_t hits = 0;
+    for (const Ray& ray : test::makeRandomRays(scene, numRays, seed)) {
+        Hit ref, got;
+        const bool refHit = test::bruteForceIntersect(view, ray, ref);
+        const bool gotHit = bvhIntersect(bvhView, view, ray, got);
+        ASSERT_EQ(gotHit, refHit);
+        ASSERT_EQ(bvhOccluded(bvhView, view, ray), refHit);
+        if (!refHit) {
+            EXPECT_FALSE(got.valid());
+            continue;
+        }
+        ++hits;
+        ASSERT_EQ(got.t, ref.t);
+        if (got.primId != ref.primId) {
+            EXPECT_EQ(test::primitiveT(view, got.primId, ray), ref.t) << "not a tie";
+        } else {
+            EXPECT_EQ(got.b1, ref.b1);
+            EXPECT_EQ(got.b2, ref.b2);
+        }
+    }
+    if (scene.numPrimitives() > 0) {
+        EXPECT_GT(hits, numRays / 10);  // the rays do test something
+    }
+}
+
+struct BvhCase {
+    std::string name;
+    test::RandomSceneOptions scene;
+};
+
+class BvhVsBruteForce : public ::testing::TestWithParam<BvhCase> {};
+
+TEST_P(BvhVsBruteForce, PrecomputedPrimitives) {
+    expectMatchesBruteForce(test::makeRandomScene(GetParam().scene), {}, 3000, 17);
+}
+
+TEST_P(BvhVsBruteForce, SceneArraysAndOtherSettings) {
+    BvhBuildOptions options;
+    options.precomputePrimitives = false;
+    options.binCount = 8;
+    options.maxLeafSize = 2;
+    expectMatchesBruteForce(test::makeRandomScene(GetParam().scene), options, 2000, 29);
+}
+
+test::RandomSceneOptions sceneOf(uint32_t tris, uint32_t spheres, uint64_t seed) {
+    test::RandomSceneOptions o;
+    o.numTriangles = tris;
+    o.numSpheres = spheres;
+    o.seed = seed;
+    return o;
+}
+
+std::vector<BvhCase> bvhCases() {
+    std::vector<BvhCase> cases;
+    cases.push_back({"Empty", sceneOf(0, 0, 1)});
+    cases.push_back({"OneTriangle", sceneOf(1, 0, 2)});
+    cases.push_back({"OneSphere", sceneOf(0, 1, 3)});
+    cases.push_back({"SmallMixed", sceneOf(7, 3, 4)});
+    cases.push_back({"Triangles1000", sceneOf(1000, 0, 5)});
+    cases.push_back({"Mixed2000", sceneOf(1500, 500, 6)});
+    BvhCase degenerate{"Degenerate", sceneOf(1000, 50, 7)};
+    degenerate.scene.degenerateFraction = 0.3f;
+    cases.push_back(degenerate);
+    BvhCase far{"FarOffset", sceneOf(1000, 100, 8)};
+    far.scene.center = Vec3f(1e4f, -1e4f, 1e4f);
+    cases.push_back(far);
+    BvhCase dense{"DenseOverlapping", sceneOf(2000, 0, 9)};
+    dense.scene.extent = 1;  // heavily overlapping triangles: many near-ties
+    cases.push_back(dense);
+    return cases;
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, BvhVsBruteForce, ::testing::ValuesIn(bvhCases()),
+                         [](const auto& info) { return info.param.name; });
+
+TEST(Bvh, IdenticalPrimitivesAreSplitByCount) {
+    // 100 copies of one triangle: all centroids coincide, so SAH binning has nothing to split on.
+    Scene scene;
+    const uint32_t mesh = test::addMeshShape(scene, 0, 100);
+    for (int i = 0; i < 100; ++i) test::addTriangle(scene, mesh, {0, 0, 0}, {1, 0, 0}, {0, 1, 0});
+    const Bvh bvh = buildBvh(scene);
+    EXPECT_GT(bvh.stats.leafCount, 1u);
+    Hit hit;
+    const Ray ray{{0.25f, 0.25f, 1}, {0, 0, -1}, kInfinity};
+    ASSERT_TRUE(bvhIntersect(bvh.view(), scene.view(), ray, hit));
+    EXPECT_FLOAT_EQ(hit.t, 1);
+    EXPECT_LT(hit.primId, 100u);
+}
+
+TEST(Bvh, EmptySceneHasNoNodesAndNoHits) {
+    const Scene scene;
+    const Bvh bvh = buildBvh(scene);
+    EXPECT_TRUE(bvh.nodes.empty());
+    EXPECT_EQ(bvh.stats.nodeCount, 0u);
+    EXPECT_EQ(bvh.stats.leafCount, 0u);
+    Hit hit;
+    const Ray ray{{0, 0, 0}, {0, 0, 1}, kInfinity};
+    EXPECT_FALSE(bvhIntersect(bvh.view(), scene.view(), ray, hit));
+    EXPECT_FALSE(bvhOccluded(bvh.view(), scene.view(), ray));
+}
+
+bool sameTree(const Bvh& a, const Bvh& b) {
+    if (a.nodes.size() != b.nodes.size() || a.primIndices != b.primIndices) return false;
+    for (size_t i = 0; i < a.nodes.size(); ++i) {
+        const BvhNode &x = a.nodes[i], &y = b.nodes[i];
+        if (!(x.lo == y.lo) || !(x.hi == y.hi) || x.offset != y.offset ||
+            x.countAxis != y.countAxis)
+            return false;
+    }
+    return true;
+}
+
+TEST(Bvh, BuildIsDeterministicForAnyThreadCount) {
+    // Large enough for the parallel subtree builds (> 4096 primitives per task).
+    const Scene scene = test::makeRandomScene(sceneOf(40000, 2000, 21));
+    const Bvh first = buildBvh(scene);
+    const Bvh second = buildBvh(scene);
+    Bvh serial;
+    {
+        tbb::global_control oneThread(tbb::global_control::max_allowed_parallelism, 1);
+        serial = buildBvh(scene);
+    }
+    EXPECT_TRUE(sameTree(first, second));
+    EXPECT_TRUE(sameTree(first, serial));
+}
+
+bool contains(const BvhNode& outer, Vec3f lo, Vec3f hi) {
+    return outer.lo.x <= lo.x && outer.lo.y <= lo.y && outer.lo.z <= lo.z && hi.x <= outer.hi.x &&
+           hi.y <= outer.hi.y && hi.z <= outer.hi.z;
+}
+
+TEST(Bvh, StatisticsAndStructureAreConsistent) {
+    const Scene scene = test::makeRandomScene(sceneOf(5000, 300, 31));
+    BvhBuildOptions options;
+    const Bvh bvh = buildBvh(scene, options);
+    const BvhStats& s = bvh.stats;
+    const uint32_t n = scene.numPrimitives();
+    EXPECT_EQ(s.nodeCount, 2 * s.leafCount - 1);  // a full binary tree
+    EXPECT_EQ(bvh.nodes.size(), s.nodeCount + 1);  // plus the padding node 1
+    EXPECT_EQ(reinterpret_cast<uintptr_t>(bvh.nodes.data()) % 64, 0u);  // pairs fill cache lines
+    EXPECT_LE(s.maxDepth, uint32_t(kBvhMaxDepth));
+    EXPECT_GT(s.maxDepth, 5u);
+    EXPECT_NEAR(s.averageLeafSize, double(n) / s.leafCount, 1e-9);
+    EXPECT_LE(s.averageLeafSize, options.maxLeafSize);
+    EXPECT_GT(s.sahCost, 1.0);
+    EXPECT_LT(s.sahCost, double(n));  // far better than one big leaf
+    EXPECT_EQ(s.memoryBytes, bvh.nodes.size() * sizeof(BvhNode) + n * sizeof(uint32_t) +
+                                 n * sizeof(BvhPrimitive));
+    EXPECT_GE(s.buildMilliseconds, 0.0);
+
+    // Every primitive exactly once; children inside parents; leaves bound their primitives.
+    std::vector<uint32_t> ids = bvh.primIndices;
+    std::sort(ids.begin(), ids.end());
+    for (uint32_t i = 0; i < n; ++i) ASSERT_EQ(ids[i], i);
+    uint32_t leafPrims = 0;
+    for (uint32_t i = 0; i < bvh.nodes.size(); ++i) {
+        if (i == 1) continue;  // padding
+        const BvhNode& node = bvh.nodes[i];
+        if (node.isLeaf()) {
+            leafPrims += node.primCount();
+            for (uint32_t k = node.offset; k < node.offset + node.primCount(); ++k) {
+                const Bounds3f b = scene.primitiveBounds(bvh.primIndices[k]);
+                ASSERT_TRUE(contains(node, b.lo, b.hi));
+            }
+        } else {
+            ASSERT_LT(i, node.offset);  // depth-first: children after their parent
+            ASSERT_EQ(node.offset % 2, 0u);
+            ASSERT_LT(node.offset + 1, bvh.nodes.size());
+            const BvhNode &a = bvh.nodes[node.offset], &b = bvh.nodes[node.offset + 1];
+            ASSERT_TRUE(contains(node, a.lo, a.hi));
+            ASSERT_TRUE(contains(node, b.lo, b.hi));
+        }
+    }
+    EXPECT_EQ(leafPrims, n);
+}
+
+}  // namespace
+}  // namespace caustica

@@ -1,0 +1,178 @@
+// Unit tests of the ray–triangle and ray–sphere tests in primitive_intersect.h.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "accel/test_scenes.h"
+#include "caustica/accel/primitive_intersect.h"
+
+namespace caustica {
+namespace {
+
+// The triangle (0,0,0), (1,0,0), (0,1,0) in the z = 0 plane.
+const Vec3f kP0(0, 0, 0), kE1(1, 0, 0), kE2(0, 1, 0);
+
+bool hitTri(Vec3f o, Vec3f d, Float tMax, Float& t, Float& b1, Float& b2) {
+    return intersectTriangle(o, d, tMax, kP0, kE1, kE2, t, b1, b2);
+}
+
+TEST(TriangleIntersect, HitReturnsDistanceAndBarycentrics) {
+    Float t, b1, b2;
+    ASSERT_TRUE(hitTri({0.2f, 0.3f, 2}, {0, 0, -1}, kInfinity, t, b1, b2));
+    EXPECT_FLOAT_EQ(t, 2);
+    EXPECT_FLOAT_EQ(b1, 0.2f);  // weight of vertex 1 = (1,0,0)
+    EXPECT_FLOAT_EQ(b2, 0.3f);  // weight of vertex 2 = (0,1,0)
+}
+
+TEST(TriangleIntersect, BothSidesAreHit) {
+    Float t, b1, b2;
+    ASSERT_TRUE(hitTri({0.25f, 0.25f, -3}, {0, 0, 1}, kInfinity, t, b1, b2));
+    EXPECT_FLOAT_EQ(t, 3);
+}
+
+TEST(TriangleIntersect, Misses) {
+    Float t = -7, b1, b2;
+    EXPECT_FALSE(hitTri({0.8f, 0.8f, 1}, {0, 0, -1}, kInfinity, t, b1, b2));   // outside u+v<=1
+    EXPECT_FALSE(hitTri({-0.1f, 0.5f, 1}, {0, 0, -1}, kInfinity, t, b1, b2));  // u < 0
+    EXPECT_FALSE(hitTri({0.2f, 0.2f, 1}, {0, 0, 1}, kInfinity, t, b1, b2));    // behind
+    EXPECT_FALSE(hitTri({0.2f, 0.2f, 1}, {1, 0, 0}, kInfinity, t, b1, b2));    // parallel
+    EXPECT_FALSE(hitTri({0.2f, 0.2f, 0}, {1, 0, 0}, kInfinity, t, b1, b2));    // in the plane
+    EXPECT_FALSE(hitTri({0.2f, 0.2f, 0}, {0, 0, 1}, kInfinity, t, b1, b2));    // starts on it: t=0
+    EXPECT_EQ(t, -7);  // outputs untouched on a miss
+}
+
+TEST(TriangleIntersect, EdgesAndVerticesAreInside) {
+    Float t, b1, b2;
+    EXPECT_TRUE(hitTri({0.5f, 0.5f, 1}, {0, 0, -1}, kInfinity, t, b1, b2));  // hypotenuse
+    EXPECT_TRUE(hitTri({0.5f, 0, 1}, {0, 0, -1}, kInfinity, t, b1, b2));     // edge v = 0
+    EXPECT_TRUE(hitTri({0, 0, 1}, {0, 0, -1}, kInfinity, t, b1, b2));        // vertex 0
+    EXPECT_TRUE(hitTri({1, 0, 1}, {0, 0, -1}, kInfinity, t, b1, b2));        // vertex 1
+    EXPECT_FLOAT_EQ(b1, 1);
+}
+
+TEST(TriangleIntersect, SharedEdgeOfAQuadIsNotACrack) {
+    // Quad (0,0)-(1,1) split along its diagonal; rays crossing the diagonal hit one of the halves.
+    const Vec3f a(0, 0, 0), b(1, 0, 0), c(1, 1, 0), d(0, 1, 0);
+    test::TestRng rng(3);
+    for (int i = 0; i < 2000; ++i) {
+        const Float s = rng.uniform();
+        const Vec3f target(s, s, 0), o = Vec3f(rng.uniform(-3, 3), rng.uniform(-3, 3), 1.7f);
+        Float t, b1, b2;
+        const bool h1 = intersectTriangle(o, target - o, kInfinity, a, b - a, c - a, t, b1, b2);
+        const bool h2 = intersectTriangle(o, target - o, kInfinity, a, c - a, d - a, t, b1, b2);
+        EXPECT_TRUE(h1 || h2) << "crack at s=" << s;
+    }
+}
+
+TEST(TriangleIntersect, TMaxIsAnOpenBound) {
+    Float t, b1, b2;
+    EXPECT_FALSE(hitTri({0.2f, 0.2f, 2}, {0, 0, -1}, 2.0f, t, b1, b2));
+    EXPECT_TRUE(hitTri({0.2f, 0.2f, 2}, {0, 0, -1}, std::nextafter(2.0f, 3.0f), t, b1, b2));
+    EXPECT_FALSE(hitTri({0.2f, 0.2f, 2}, {0, 0, -1}, 1.5f, t, b1, b2));
+}
+
+TEST(TriangleIntersect, NonUnitDirectionScalesT) {
+    Float t, b1, b2;
+    ASSERT_TRUE(hitTri({0.1f, 0.6f, 4}, {0, 0, -8}, kInfinity, t, b1, b2));
+    EXPECT_FLOAT_EQ(t, 0.5f);
+    EXPECT_FLOAT_EQ(b1, 0.1f);
+    EXPECT_FLOAT_EQ(b2, 0.6f);
+    // A shadow ray to a point behind the triangle is blocked before t = 1 - 1e-4.
+    const Vec3f o(0.3f, 0.3f, 1), target(0.3f, 0.3f, -1);
+    EXPECT_TRUE(hitTri(o, target - o, 1 - 1e-4f, t, b1, b2));
+    EXPECT_FLOAT_EQ(t, 0.5f);
+}
+
+TEST(TriangleIntersect, ZeroAreaTrianglesAreNeverHit) {
+    Float t, b1, b2;
+    const Vec3f p(0.5f, 0.5f, 0);
+    EXPECT_FALSE(intersectTriangle({0.5f, 0.5f, 1}, {0, 0, -1}, kInfinity, p, Vec3f(), Vec3f(), t,
+                                   b1, b2));
+    EXPECT_FALSE(intersectTriangle({0, 0, 1}, {0, 0, -1}, kInfinity, kP0, kE1, kE1, t, b1, b2));
+    EXPECT_FALSE(intersectTriangle({0.5f, 0, 1}, {0, 0, -1}, kInfinity, kP0, kE1, Vec3f(), t, b1,
+                                   b2));
+}
+
+TEST(SphereIntersect, HitFromOutsideGivesNearRoot) {
+    Float t;
+    ASSERT_TRUE(intersectSphere({0, 0, -5}, {0, 0, 1}, kInfinity, {0, 0, 0}, 1, t));
+    EXPECT_FLOAT_EQ(t, 4);
+    ASSERT_TRUE(intersectSphere({0, 0, -5}, {0, 0, 2}, kInfinity, {0, 0, 0}, 1, t));  // non-unit
+    EXPECT_FLOAT_EQ(t, 2);
+}
+
+TEST(SphereIntersect, OriginInsideGivesFarRoot) {
+    Float t;
+    ASSERT_TRUE(intersectSphere({0, 0.5f, 0}, {0, 1, 0}, kInfinity, {0, 0, 0}, 2, t));
+    EXPECT_FLOAT_EQ(t, 1.5f);
+    ASSERT_TRUE(intersectSphere({0, 0.5f, 0}, {0, -1, 0}, kInfinity, {0, 0, 0}, 2, t));
+    EXPECT_FLOAT_EQ(t, 2.5f);
+}
+
+TEST(SphereIntersect, MissesBehindAndBeyondTMax) {
+    Float t = -7;
+    EXPECT_FALSE(intersectSphere({0, 0, -5}, {0, 1, 0}, kInfinity, {0, 0, 0}, 1, t));  // aside
+    EXPECT_FALSE(intersectSphere({0, 0, 5}, {0, 0, 1}, kInfinity, {0, 0, 0}, 1, t));   // behind
+    EXPECT_FALSE(intersectSphere({0, 0, -5}, {0, 0, 1}, 4.0f, {0, 0, 0}, 1, t));       // open tMax
+    EXPECT_FALSE(intersectSphere({0, 1.0001f, -5}, {0, 0, 1}, kInfinity, {0, 0, 0}, 1, t));
+    EXPECT_FALSE(intersectSphere({0, 0, -5}, {0, 0, 0}, kInfinity, {0, 0, 0}, 1, t));  // d = 0
+    EXPECT_EQ(t, -7);
+    EXPECT_TRUE(intersectSphere({0, 0, -5}, {0, 0, 1}, std::nextafter(4.0f, 5.0f), {0, 0, 0}, 1, t));
+}
+
+TEST(SphereIntersect, PreciseForSmallFarSpheres) {
+    // A sphere of radius 0.1 about 1.7e4 units away. The textbook discriminant b^2 - ac cancels
+    // catastrophically here (b^2 ~ 3e8 carries no digits of r^2 = 0.01); the robust form hits every
+    // ray aimed inside the silhouette, with t within a few ulps of a double-precision reference.
+    const Vec3f c(1e4f, 1e4f, 1e4f);
+    const Float r = 0.1f;
+    const Vec3f o(0, 0, 0);
+    test::TestRng rng(11);
+    for (int i = 0; i < 200; ++i) {
+        const Vec3f target = c + Vec3f(rng.uniform(-0.7f, 0.7f), rng.uniform(-0.7f, 0.7f), 0) * r;
+        const Vec3f d = normalize(target - o);
+        Float t;
+        ASSERT_TRUE(intersectSphere(o, d, kInfinity, c, r, t)) << i;
+        const double fx = double(o.x) - c.x, fy = double(o.y) - c.y, fz = double(o.z) - c.z;
+        const double a = double(d.x) * d.x + double(d.y) * d.y + double(d.z) * d.z;
+        const double b = fx * d.x + fy * d.y + fz * d.z;
+        const double cc = fx * fx + fy * fy + fz * fz - double(r) * r;
+        const double tRef = (-b - std::sqrt(b * b - a * cc)) / a;
+        const double ulp = std::nextafter(float(tRef), kInfinity) - float(tRef);
+        EXPECT_NEAR(t, tRef, 4 * ulp) << i;
+    }
+}
+
+TEST(IntersectPrimitive, UpdatesOnlyWhenCloser) {
+    Scene scene;
+    const uint32_t mesh = test::addMeshShape(scene, 0, 1);
+    test::addTriangle(scene, mesh, {-1, -1, 0}, {1, -1, 0}, {-1, 1, 0});
+    test::addSphere(scene, {0, 0, 5}, 1);
+    const SceneView view = scene.view();
+    const Ray ray{{-0.5f, -0.5f, 10}, {0, 0, -1}, kInfinity};
+    Hit hit;
+    ASSERT_TRUE(intersectPrimitive(view, 1, ray, hit));  // sphere first
+    EXPECT_EQ(hit.primId, 1u);
+    EXPECT_GT(hit.t, 0);
+    Hit sphereHit = hit;
+    EXPECT_FALSE(intersectPrimitive(view, 0, ray, hit));  // triangle farther: no update
+    EXPECT_EQ(hit.primId, sphereHit.primId);
+    EXPECT_EQ(hit.t, sphereHit.t);
+
+    Hit fresh;
+    ASSERT_TRUE(intersectPrimitive(view, 0, ray, fresh));
+    EXPECT_EQ(fresh.primId, 0u);
+    EXPECT_FLOAT_EQ(fresh.t, 10);
+    EXPECT_FLOAT_EQ(fresh.b1, 0.25f);
+    EXPECT_FLOAT_EQ(fresh.b2, 0.25f);
+
+    Ray shortRay = ray;
+    shortRay.tMax = 2;  // stops before both
+    Hit none;
+    EXPECT_FALSE(intersectPrimitive(view, 0, shortRay, none));
+    EXPECT_FALSE(intersectPrimitive(view, 1, shortRay, none));
+    EXPECT_FALSE(none.valid());
+}
+
+}  // namespace
+}  // namespace caustica

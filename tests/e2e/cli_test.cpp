@@ -1,0 +1,157 @@
+// The `caustica` command line: outputs, statistics, errors on bad input, checkpoints and resume.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "caustica/io/image_io.h"
+#include "render_helpers.h"
+
+namespace caustica::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+    int exitCode;
+    std::string output;  // stdout and stderr
+};
+
+Result run(const std::string& args) {
+    std::string cmd = std::string(CAUSTICA_BINARY) + " " + args + " 2>&1";
+    Result r{-1, {}};
+    FILE* p = popen(cmd.c_str(), "r");
+    if (!p) return r;
+    char buf[4096];
+    while (size_t n = fread(buf, 1, sizeof buf, p)) r.output.append(buf, n);
+    int status = pclose(p);
+    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+class Cli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir = fs::temp_directory_path() / ("caustica_cli_" + std::string(
+                  ::testing::UnitTest::GetInstance()->current_test_info()->name()));
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+    }
+    std::string path(const std::string& name) const { return (dir / name).string(); }
+    std::string write(const std::string& name, const std::string& text) const {
+        std::ofstream(path(name)) << text;
+        return path(name);
+    }
+    const std::string box = sourcePath("scenes/cornell-box/scene.xml");
+    fs::path dir;
+};
+
+TEST_F(Cli, RendersAllFormatsWithStatistics) {
+    Result r = run("render " + box + " -D width=16 -D height=12 --spp 2 -q -o " + path("a.exr") + " -o " +
+                   path("a.png") + " -o " + path("a.pfm") + " --stats-json " + path("stats.json"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    for (const char* f : {"a.exr", "a.png", "a.pfm"}) {
+        Image im = readImage(path(f));
+        EXPECT_EQ(im.width, 16);
+        EXPECT_EQ(im.height, 12);
+    }
+    EXPECT_EQ(readImageMetadata(path("a.exr")).entries.at("caustica.spp"), "2");
+    std::ifstream js(path("stats.json"));
+    std::string json((std::istreambuf_iterator<char>(js)), {});
+    EXPECT_NE(json.find("\"rays_per_second\""), std::string::npos);
+    EXPECT_NE(r.output.find("samples/s"), std::string::npos);
+    EXPECT_NE(r.output.find("rays/s"), std::string::npos);
+}
+
+TEST_F(Cli, TimeBudgetStopsTheRender) {
+    Result r = run("render " + box + " -D width=16 -D height=16 --time 0.5 -q -o " + path("t.exr"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_GE(std::stoi(readImageMetadata(path("t.exr")).entries.at("caustica.spp")), 1);
+}
+
+TEST_F(Cli, ResolutionOverrideAndSeed) {
+    ASSERT_EQ(run("render " + box + " --res 20x10 --spp 1 --seed 5 -q -o " + path("r.exr")).exitCode, 0);
+    Image im = readImage(path("r.exr"));
+    EXPECT_EQ(im.width, 20);
+    EXPECT_EQ(im.height, 10);
+}
+
+TEST_F(Cli, CompareAndInfo) {
+    ASSERT_EQ(run("render " + box + " -D width=8 -D height=8 --spp 1 -q -o " + path("c.exr")).exitCode, 0);
+    Result c = run("compare " + path("c.exr") + " " + path("c.exr") + " --json -e " + path("err.png"));
+    ASSERT_EQ(c.exitCode, 0) << c.output;
+    EXPECT_NE(c.output.find("\"mse\": 0"), std::string::npos) << c.output;
+    EXPECT_TRUE(fs::exists(path("err.png")));
+    Result i = run("info " + box);
+    ASSERT_EQ(i.exitCode, 0) << i.output;
+    EXPECT_NE(i.output.find("triangles"), std::string::npos);
+    EXPECT_NE(i.output.find("bvh"), std::string::npos);
+    for (const char* cmd : {"render --help", "compare --help", "info --help", "--help"})
+        EXPECT_EQ(run(cmd).exitCode, 0) << cmd;
+}
+
+/// Bad input: non-zero exit, one line "caustica: error: ..." naming what is wrong.
+void expectOneLineError(const Result& r, const std::string& mustContain) {
+    EXPECT_NE(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("caustica: error: "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(mustContain), std::string::npos) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+}
+
+TEST_F(Cli, BadInputIsRefusedWithOneLine) {
+    std::string malformed = write("malformed.xml", "<scene version=\"3.0.0\">\n<shape type=\"sphere\">\n</scene>\n");
+    expectOneLineError(run("render " + malformed + " -q -o " + path("x.exr")), "malformed.xml:");
+    std::string unknown = write("unknown.xml", "<scene version=\"3.0.0\">\n\n<shape type=\"teapot\"/>\n</scene>\n");
+    expectOneLineError(run("render " + unknown + " -q -o " + path("x.exr")), "unknown.xml:3");
+    std::string missing = write("missing.xml",
+        "<scene version=\"3.0.0\">\n<shape type=\"obj\"><string name=\"filename\" value=\"nope.obj\"/></shape>\n</scene>\n");
+    expectOneLineError(run("render " + missing + " -q -o " + path("x.exr")), "nope.obj");
+    expectOneLineError(run("render " + box + " --res 0x0 -q -o " + path("x.exr")), "absurd resolution");
+    expectOneLineError(run("render " + box + " -q -o " + path("x.bmp")), "x.bmp");
+    expectOneLineError(run("compare " + path("none.exr") + " " + path("none.exr")), "none.exr");
+}
+
+TEST_F(Cli, KilledRenderResumesToTheSameImage) {
+    const std::string args = " -D width=64 -D height=64 --spp-per-pass 1 -q --seed 3 ";
+    const int target = 200;
+    // A render killed (SIGKILL, no chance to clean up) after it wrote a checkpoint.
+    std::string cmd = std::string(CAUSTICA_BINARY) + " render " + box + args +
+                      "--spp 100000 --checkpoint-every 0.05 -o " + path("part.exr") + " >/dev/null 2>&1 & echo $!";
+    FILE* p = popen(cmd.c_str(), "r");
+    ASSERT_NE(p, nullptr);
+    int pid = 0;
+    ASSERT_EQ(fscanf(p, "%d", &pid), 1);
+    pclose(p);
+    const std::string ckpt = path("part.exr") + ".ckpt";
+    for (int i = 0; i < 600 && !fs::exists(ckpt); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    std::system(("kill -9 " + std::to_string(pid)).c_str());
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    ASSERT_TRUE(fs::exists(ckpt)) << "no checkpoint was written";
+    // The image written with the checkpoint is a valid image holding the finished passes.
+    const int partialSpp = std::stoi(readImageMetadata(path("part.exr")).entries.at("caustica.spp"));
+    if (partialSpp >= target) GTEST_SKIP() << "the killed render was already at " << partialSpp << " spp";
+
+    Result resumed = run("render " + box + args + "--spp " + std::to_string(target) + " --resume -o " + path("part.exr"));
+    ASSERT_EQ(resumed.exitCode, 0) << resumed.output;
+    EXPECT_FALSE(fs::exists(ckpt)) << "a finished render removes its checkpoint";
+    ASSERT_EQ(run("render " + box + args + "--spp " + std::to_string(target) + " -o " + path("full.exr")).exitCode, 0);
+    Image a = readImage(path("full.exr")), b = readImage(path("part.exr"));
+    ASSERT_EQ(a.rgb.size(), b.rgb.size());
+    EXPECT_EQ(0, std::memcmp(a.rgb.data(), b.rgb.data(), a.rgb.size() * sizeof(float)))
+        << "the resumed render differs from the uninterrupted one (killed at " << partialSpp << " spp)";
+}
+
+TEST_F(Cli, ResumeWithoutCheckpointIsRefused) {
+    expectOneLineError(run("render " + box + " -D width=8 -D height=8 --resume -q -o " + path("nope.exr")),
+                       "nope.exr.ckpt");
+}
+
+}  // namespace
+}  // namespace caustica::test

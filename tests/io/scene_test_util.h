@@ -1,0 +1,93 @@
+// scene_test_util.h — helpers for the scene loader tests: temporary files, loading XML strings,
+// and checking that an error names the right file, line and reason.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <string>
+#include <unistd.h>
+
+#include "caustica/io/scene_loader.h"
+#include "caustica/util/error.h"
+
+namespace caustica::test {
+
+/// A fresh directory under the system temp dir, removed when the object dies.
+class TempDir {
+public:
+    TempDir() {
+        static std::atomic<int> counter{0};
+        path_ = std::filesystem::temp_directory_path() /
+                ("caustica_io_test_" + std::to_string(getpid()) + "_" + std::to_string(counter++));
+        std::filesystem::create_directories(path_);
+    }
+    ~TempDir() {
+        std::error_code ec;
+        std::filesystem::remove_all(path_, ec);
+    }
+    std::string path(const std::string& name) const { return (path_ / name).string(); }
+    /// Writes `content` to `name` (binary-exact) and returns the full path.
+    std::string write(const std::string& name, const std::string& content) const {
+        std::filesystem::path p = path_ / name;
+        std::filesystem::create_directories(p.parent_path());
+        // Removing first is much faster than truncating on ext4 (no flush of the old data).
+        std::filesystem::remove(p);
+        std::ofstream(p, std::ios::binary) << content;
+        return p.string();
+    }
+
+private:
+    std::filesystem::path path_;
+};
+
+/// The minimal sensor every loadable scene needs.
+inline const char* kSensor = R"(<sensor type="perspective"><float name="fov" value="45"/></sensor>)";
+
+/// `<scene version="3.0.0">` + body + `</scene>`, with the default sensor unless told otherwise.
+inline std::string sceneXml(const std::string& body, bool withSensor = true) {
+    return std::string("<scene version=\"3.0.0\">\n") + (withSensor ? kSensor : "") + "\n" + body +
+           "\n</scene>\n";
+}
+
+/// Writes `xml` to a temp file and loads it.
+inline Scene loadXml(const TempDir& dir, const std::string& xml,
+                     std::vector<std::string>* warnings = nullptr,
+                     const std::map<std::string, std::string>& defines = {}) {
+    std::vector<std::string> local;
+    return loadScene(dir.write("scene.xml", xml), defines, warnings ? warnings : &local);
+}
+
+/// Runs `fn`, expecting a caustica::Error whose message contains `file`, ":line:" and `reason`.
+inline void expectError(const std::function<void()>& fn, const std::string& file, int line,
+                        const std::string& reason) {
+    try {
+        fn();
+        ADD_FAILURE() << "no error thrown; expected: " << reason;
+    } catch (const Error& e) {
+        std::string msg = e.what();
+        EXPECT_NE(msg.find(file), std::string::npos) << "file '" << file << "' not in: " << msg;
+        if (line > 0) {
+            std::string tag = std::string(1, ':').append(std::to_string(line)).append(1, ':');
+            EXPECT_NE(msg.find(tag), std::string::npos) << "line " << line << " not in: " << msg;
+        }
+        EXPECT_NE(msg.find(reason), std::string::npos) << "reason '" << reason << "' not in: " << msg;
+        EXPECT_EQ(msg.find('\n'), std::string::npos) << "message spans lines: " << msg;
+    }
+}
+
+/// True if some warning contains all of the given pieces.
+inline bool hasWarning(const std::vector<std::string>& warnings,
+                       std::initializer_list<std::string> pieces) {
+    for (const std::string& w : warnings) {
+        bool all = true;
+        for (const std::string& p : pieces) all &= w.find(p) != std::string::npos;
+        if (all) return true;
+    }
+    return false;
+}
+
+}  // namespace caustica::test

@@ -1,0 +1,197 @@
+// χ² goodness-of-fit tests of every non-delta BSDF's sampling against pdfBsdf, plus per-sample
+// consistency of the sampled weight and pdf with evalBsdf / pdfBsdf.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "caustica/scene/bsdf.h"
+#include "caustica/util/rng.h"
+#include "scene/bsdf_test_util.h"
+#include "scene/chi2.h"
+
+namespace caustica {
+namespace {
+
+using test::SphereGrid;
+
+struct Chi2Case {
+    std::string name;
+    std::vector<Bsdf> bsdfs;
+    uint32_t id = 0;
+    Vec3f n{0, 0, 1};           // shading normal
+    double thetaO = 0, phiO = 0;  // viewing direction wo in degrees, in the frame of n
+    int nTheta = 64, nPhi = 128;  // histogram resolution
+    int k = 4;                    // Simpson subintervals per bin and axis (checked against 2k)
+};
+
+void PrintTo(const Chi2Case& c, std::ostream* os) { *os << c.name; }
+
+constexpr int kSamples = 1000000;
+
+/// Samples the BSDF, checking every sample against evalBsdf/pdfBsdf, and runs the χ² test.
+void runBsdfChi2(const Chi2Case& c, uint64_t seed) {
+    const Span<const Bsdf> bsdfs(c.bsdfs);
+    const SurfaceInteraction si = test::surfaceAt(c.n);
+    const Frame frame(si.ns);
+    const Vec3f wo = test::directionDeg(frame, c.thetaO, c.phiO);
+    SphereGrid grid;
+    grid.frame = frame;
+    grid.nTheta = c.nTheta;
+    grid.nPhi = c.nPhi;
+
+    int badWeight = 0, badPdf = 0, badDir = 0;
+    std::string firstBad;
+    auto sample = [&](int i, Vec3f& w) {
+        IndependentSampler rng(uint64_t(i), 0, seed);
+        const Float uLobe = rng.get1D();
+        const Vec2f u = rng.get2D();
+        BsdfSample bs;
+        if (!sampleBsdf(bsdfs, c.id, si, wo, uLobe, u, bs)) return false;
+        const Spectrum f = evalBsdf(bsdfs, c.id, si, wo, bs.wi);
+        const Float pdf = pdfBsdf(bsdfs, c.id, si, wo, bs.wi);
+        if (std::fabs(length(bs.wi) - 1) > 1e-5f || bs.delta || bs.eta != 1) ++badDir;
+        if (!test::relClose(bs.pdf, pdf)) ++badPdf;
+        for (int ch = 0; ch < 3; ++ch)
+            if (!(pdf > 0) || !test::relClose(bs.weight[ch], f[ch] / pdf)) {
+                if (badWeight++ == 0)
+                    firstBad = "weight " + std::to_string(bs.weight[ch]) + " vs f/pdf " +
+                               std::to_string(f[ch] / pdf);
+                break;
+            }
+        w = bs.wi;
+        return true;
+    };
+    auto pdf = [&](Vec3f w) { return double(pdfBsdf(bsdfs, c.id, si, wo, w)); };
+    const test::Chi2Result r = test::chi2Directions(grid, kSamples, sample, pdf, c.k);
+    EXPECT_TRUE(r.passed()) << c.name << ": " << r.describe();
+    if (std::getenv("CAUSTICA_CHI2_VERBOSE")) std::printf("%s: %s\n", c.name.c_str(), r.describe().c_str());
+    EXPECT_EQ(badWeight, 0) << c.name << ": " << firstBad;
+    EXPECT_EQ(badPdf, 0) << c.name;
+    EXPECT_EQ(badDir, 0) << c.name;
+}
+
+std::vector<Chi2Case> makeCases() {
+    std::vector<Chi2Case> cases;
+    const Spectrum goldEta(0.143f, 0.374f, 1.442f), goldK(3.983f, 2.385f, 1.603f);
+    for (double t : {0.0, 45.0, 80.0})
+        cases.push_back({"diffuse_" + std::to_string(int(t)), {test::diffuse(Spectrum(0.7f))}, 0,
+                         {0, 0, 1}, t, 30});
+    // A tilted shading normal (the frame is built from si.ns).
+    cases.push_back({"diffuse_tilted", {test::diffuse(Spectrum(0.5f))}, 0, {0.3f, -0.5f, 0.8f},
+                     50, 200});
+    for (Float a : {0.05f, 0.3f, 0.8f})
+        for (double t : {5.0, 35.0, 65.0, 85.0}) {
+            Chi2Case c{"roughconductor_a" + std::to_string(int(a * 100)) + "_" +
+                           std::to_string(int(t)),
+                       {test::roughConductor(a, a, goldEta, goldK)}, 0, {0, 0, 1}, t, 60};
+            if (a < 0.1f) c.nTheta = 128, c.nPhi = 256;  // resolve the narrow lobe
+            cases.push_back(c);
+        }
+    for (double t : {20.0, 60.0, 80.0})
+        for (double p : {0.0, 45.0}) {
+            Chi2Case c{"roughconductor_aniso_" + std::to_string(int(t)) + "_" +
+                           std::to_string(int(p)),
+                       {test::roughConductor(0.1f, 0.5f)}, 0, {0, 0, 1}, t, p, 128, 256};
+            cases.push_back(c);
+        }
+    {
+        Chi2Case front{"twosided_front", {}, 0, {0, 0, 1}, 40, 10};
+        front.id = test::addTwoSided(front.bsdfs, test::diffuse(Spectrum(0.8f)),
+                                     test::roughConductor(0.3f, 0.3f));
+        Chi2Case back = front;
+        back.name = "twosided_back";
+        back.thetaO = 140;  // wo below the surface: the back child, mirrored
+        Chi2Case backAniso{"twosided_back_aniso", {}, 0, {0, 0, -1}, 120, 70, 128, 256};
+        backAniso.id = test::addTwoSided(backAniso.bsdfs, test::diffuse(Spectrum(0.8f)),
+                                         test::roughConductor(0.1f, 0.4f));
+        cases.push_back(front);
+        cases.push_back(back);
+        cases.push_back(backAniso);
+    }
+    return cases;
+}
+
+class BsdfChi2 : public ::testing::TestWithParam<Chi2Case> {};
+
+/// A fixed seed per case (FNV-1a of its name), so that cases draw independent samples.
+uint64_t seedOf(const std::string& name) {
+    uint64_t h = 0xcbf29ce484222325ull;
+    for (char ch : name) h = (h ^ uint8_t(ch)) * 0x100000001b3ull;
+    return h;
+}
+
+TEST_P(BsdfChi2, SamplingMatchesPdf) {
+    const uint64_t seed = std::getenv("CAUSTICA_CHI2_SEED")
+                              ? std::strtoull(std::getenv("CAUSTICA_CHI2_SEED"), nullptr, 10)
+                              : 0x5eed0001;
+    runBsdfChi2(GetParam(), seed ^ seedOf(GetParam().name));
+}
+
+INSTANTIATE_TEST_SUITE_P(AllNonDelta, BsdfChi2, ::testing::ValuesIn(makeCases()),
+                         [](const ::testing::TestParamInfo<Chi2Case>& info) {
+                             return info.param.name;
+                         });
+
+// The test must be able to fail: a 3% roughness mismatch between sampling and pdf is rejected.
+TEST(BsdfChi2Power, RejectsSlightlyWrongPdf) {
+    std::vector<Bsdf> sampled{test::roughConductor(0.3f, 0.3f)};
+    std::vector<Bsdf> claimed{test::roughConductor(0.31f, 0.31f)};
+    const SurfaceInteraction si = test::surfaceAt(Vec3f(0, 0, 1));
+    const Vec3f wo = test::directionDeg(Frame(si.ns), 40, 0);
+    SphereGrid grid;
+    grid.frame = Frame(si.ns);
+    auto sample = [&](int i, Vec3f& w) {
+        IndependentSampler rng(uint64_t(i), 0, 77);
+        const Float uLobe = rng.get1D();
+        BsdfSample bs;
+        if (!sampleBsdf(sampled, 0, si, wo, uLobe, rng.get2D(), bs)) return false;
+        w = bs.wi;
+        return true;
+    };
+    auto pdf = [&](Vec3f w) { return double(pdfBsdf(claimed, 0, si, wo, w)); };
+    const test::Chi2Result r = test::chi2Directions(grid, kSamples, sample, pdf);
+    EXPECT_TRUE(r.error.empty()) << r.describe();
+    EXPECT_LT(r.pValue, test::kChi2Significance) << r.describe();
+}
+
+// Samples for wo on the non-reflecting side of a one-sided BSDF are refused, and eval/pdf vanish.
+TEST(BsdfOneSided, BackSideIsBlack) {
+    const std::vector<Bsdf> bsdfs{test::diffuse(Spectrum(0.5f)), test::roughConductor(0.3f, 0.3f),
+                                  test::conductor(Spectrum(0.2f), Spectrum(3.f))};
+    const SurfaceInteraction si = test::surfaceAt(Vec3f(0.2f, 0.1f, 1));
+    const Frame frame(si.ns);
+    const Vec3f woBack = test::directionDeg(frame, 120, 10);
+    const Vec3f wiFront = test::directionDeg(frame, 30, 200);
+    const Vec3f woFront = test::directionDeg(frame, 30, 20);
+    const Vec3f wiBack = test::directionDeg(frame, 110, 200);
+    for (uint32_t id = 0; id < bsdfs.size(); ++id) {
+        BsdfSample bs;
+        EXPECT_FALSE(sampleBsdf(bsdfs, id, si, woBack, 0.5f, Vec2f(0.3f, 0.6f), bs)) << id;
+        EXPECT_TRUE(evalBsdf(bsdfs, id, si, woBack, wiFront).isBlack()) << id;
+        EXPECT_TRUE(evalBsdf(bsdfs, id, si, woFront, wiBack).isBlack()) << id;
+        EXPECT_EQ(pdfBsdf(bsdfs, id, si, woBack, wiFront), 0.0f) << id;
+        EXPECT_EQ(pdfBsdf(bsdfs, id, si, woFront, wiBack), 0.0f) << id;
+    }
+}
+
+TEST(BsdfDeltaFlag, IsDeltaBsdf) {
+    std::vector<Bsdf> b{test::diffuse(Spectrum(0.5f)), test::dielectric(1.5f),
+                        test::conductor(Spectrum(0.f), Spectrum(1.f)),
+                        test::roughConductor(0.1f, 0.1f)};
+    EXPECT_FALSE(isDeltaBsdf(b, 0));
+    EXPECT_TRUE(isDeltaBsdf(b, 1));
+    EXPECT_TRUE(isDeltaBsdf(b, 2));
+    EXPECT_FALSE(isDeltaBsdf(b, 3));
+    const uint32_t allDelta = test::addTwoSided(b, test::conductor(Spectrum(0.f), Spectrum(1.f)),
+                                                test::conductor(Spectrum(0.2f), Spectrum(3.f)));
+    const uint32_t mixed = test::addTwoSided(b, test::conductor(Spectrum(0.f), Spectrum(1.f)),
+                                             test::diffuse(Spectrum(0.5f)));
+    EXPECT_TRUE(isDeltaBsdf(b, allDelta));
+    EXPECT_FALSE(isDeltaBsdf(b, mixed));
+}
+
+}  // namespace
+}  // namespace caustica

@@ -29,6 +29,7 @@ import json
 import math
 import os
 import platform
+import re
 import sys
 import time
 
@@ -53,7 +54,8 @@ def scene_defaults(path):
 
 
 def scene_hash(name, params, per):
-    """Hash of every file of the scene directory (except references) and the parameters."""
+    """Hash of every file of the scene directory (except references; XML comments ignored) and
+    the parameters."""
     h = hashlib.sha1()
     root = os.path.join(SCENES, name)
     for dirpath, dirnames, filenames in os.walk(root):
@@ -62,7 +64,10 @@ def scene_hash(name, params, per):
             fp = os.path.join(dirpath, f)
             h.update(os.path.relpath(fp, root).encode())
             with open(fp, 'rb') as fh:
-                h.update(hashlib.sha1(fh.read()).digest())
+                data = fh.read()
+            if f.endswith('.xml'):  # comments do not change the image
+                data = re.sub(rb'<!--.*?-->', b'', data, flags=re.S)
+            h.update(hashlib.sha1(data).digest())
     h.update(json.dumps(sorted((k, str(v)) for k, v in params.items())).encode())
     h.update(str(per).encode())
     return h.hexdigest()[:16]

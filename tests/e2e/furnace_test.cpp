@@ -34,8 +34,11 @@ std::string furnaceScene(const std::string& shape, const std::string& bsdf, bool
     return path;
 }
 
-/// Every pixel within 5 sigma of `expected`; exactly `expected` where there is no noise.
-void expectUniform(const Scene& scene, float expected, int runs = 8, int spp = 16) {
+/// Every pixel within 5 sigma of `expected` (sigma estimated from the runs, so a t-distribution
+/// with runs-1 degrees of freedom: allow 1% of the values beyond, far more than the tail of an
+/// unbiased estimate needs, far fewer than a biased region makes); exactly `expected` where there
+/// is no noise; and the image mean within 4 sigma.
+void expectUniform(const Scene& scene, float expected, int runs = 16, int spp = 16) {
     RenderEnsemble e = renderEnsemble(scene, runs, spp);
     size_t outliers = 0;
     for (size_t j = 0; j < e.mean.rgb.size(); ++j) {
@@ -43,7 +46,7 @@ void expectUniform(const Scene& scene, float expected, int runs = 8, int spp = 1
         double tol = std::max(5 * sigma, 1e-4);
         if (std::fabs(e.mean.rgb[j] - expected) > tol) ++outliers;
     }
-    EXPECT_EQ(outliers, 0u) << "pixels away from " << expected;
+    EXPECT_LE(outliers, e.mean.rgb.size() / 100) << "pixels away from " << expected;
     double z = (meanOf(e.runImageMeans) - expected) / std::sqrt(std::max(varianceOfMeanOf(e.runImageMeans), 1e-12));
     EXPECT_LT(std::fabs(z), 4.0) << "image mean " << meanOf(e.runImageMeans);
 }

@@ -18,7 +18,8 @@ TEST(Bsdf, DiffuseAndTheDefault) {
     Bsdf def = shapeBsdf("");
     EXPECT_EQ(def.type, BsdfType::Diffuse);
     EXPECT_EQ(def.reflectance.g, 0.5f);
-    Bsdf d = shapeBsdf(R"(<bsdf type="diffuse"><rgb name="reflectance" value="0.1, 0.2, 0.3"/></bsdf>)");
+    Bsdf d =
+        shapeBsdf(R"(<bsdf type="diffuse"><rgb name="reflectance" value="0.1, 0.2, 0.3"/></bsdf>)");
     EXPECT_EQ(d.reflectance.b, 0.3f);
     Bsdf f = shapeBsdf(R"(<bsdf type="diffuse"><float name="reflectance" value="0.75"/></bsdf>)");
     EXPECT_EQ(f.reflectance.r, 0.75f);
@@ -89,8 +90,8 @@ TEST(Bsdf, TwoSidedChildren) {
 TEST(Bsdf, Refusals) {
     TempDir dir;
     auto bad = [&](const std::string& bsdf, int line, const std::string& reason) {
-        std::string path = dir.write("b.xml", sceneXml("<shape type=\"rectangle\">\n" + bsdf +
-                                                       "\n</shape>"));
+        std::string path =
+            dir.write("b.xml", sceneXml("<shape type=\"rectangle\">\n" + bsdf + "\n</shape>"));
         expectError([&] { loadScene(path); }, "b.xml", line, reason);
     };
     bad("<bsdf type=\"roughconductor\"/>", 4, "add <string name=\"distribution\" value=\"ggx\"/>");
@@ -108,8 +109,9 @@ TEST(Bsdf, Refusals) {
     bad("<bsdf type=\"twosided\"/>", 4, "needs one or two nested bsdfs, got 0");
     bad("<bsdf type=\"twosided\">\n<bsdf type=\"dielectric\"/></bsdf>", 5,
         "cannot wrap a transmissive bsdf");
-    bad("<bsdf type=\"plastic\"/>", 4, "unsupported bsdf type 'plastic' (supported: conductor, "
-                                       "dielectric, diffuse, roughconductor, twosided)");
+    bad("<bsdf type=\"plastic\"/>", 4,
+        "unsupported bsdf type 'plastic' (supported: conductor, "
+        "dielectric, diffuse, roughconductor, twosided)");
     bad("<bsdf type=\"diffuse\">\n<rgb name=\"reflectance\" value=\"-0.5\"/></bsdf>", 5,
         "must be finite and non-negative");
     bad("<bsdf type=\"diffuse\">\n<string name=\"reflectance\" value=\"red\"/></bsdf>", 5,

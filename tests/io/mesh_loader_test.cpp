@@ -53,7 +53,7 @@ f 1/2/1 3/3/1 2/1/1
     TriangleMesh flipped = loadObj(path);
     ASSERT_TRUE(flipped.hasNormals());
     ASSERT_TRUE(flipped.hasUVs());
-    EXPECT_EQ(flipped.positions.size(), 5u);  // (1,1,1) and (1,2,1) differ: separate vertices
+    EXPECT_EQ(flipped.positions.size(), 5u);        // (1,1,1) and (1,2,1) differ: separate vertices
     EXPECT_EQ(flipped.normals[0], Vec3f(0, 0, 2));  // the loader does not normalise
     EXPECT_EQ(flipped.uvs[0].x, 0.25f);
     EXPECT_EQ(flipped.uvs[0].y, 0.875f);  // flip_tex_coords: v -> 1 - v
@@ -70,7 +70,8 @@ TEST(ObjLoader, Errors) {
     bad("v 0 0 0\nv 1 0 0\nv 0 abc 0\nf 1 2 3\n", 3, "bad number 'abc'");
     bad("v 0 0 0\nv 1 0 nan\n", 2, "bad number 'nan'");
     bad("v 0 0\n", 1, "'v' line has 2 numbers");
-    bad("v 0 0 0\nv 1 0 0\nv 0 1 0\n\nf 1 2 9\n", 5, "vertex index 9 is out of range (the file has 3)");
+    bad("v 0 0 0\nv 1 0 0\nv 0 1 0\n\nf 1 2 9\n", 5,
+        "vertex index 9 is out of range (the file has 3)");
     bad("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/4 2 3\n", 4, "texture coordinate index 4 is out of range");
     bad("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -4\n", 4, "vertex index -4 is out of range");
     bad("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", 4, "vertex index 0 is out of range");
@@ -78,7 +79,10 @@ TEST(ObjLoader, Errors) {
     bad("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n", 4, "bad index 'x'");
     bad("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/2/3/4 2 3\n", 4, "malformed face corner");
     bad("v 0 0 0\n", 0, "OBJ file has no faces");
-    expectError([&] { loadObj(dir.path("missing.obj")); }, "missing.obj", 0, "cannot open mesh file");
+    dir.write("folder.obj/x", "");
+    expectError([&] { loadObj(dir.path("folder.obj")); }, "folder.obj", 0, "it is a directory");
+    expectError([&] { loadObj(dir.path("missing.obj")); }, "missing.obj", 0,
+                "cannot open mesh file");
 }
 
 // ---- PLY ------------------------------------------------------------------------------------
@@ -105,7 +109,9 @@ TEST(PlyLoader, RoundTripsInAllEncodings) {
 
 TEST(PlyLoader, MinimalFilesAndIndexNames) {
     TempDir dir;
-    TriangleMesh m = loadPly(dir.write("t.ply", "ply\r\nformat ascii 1.0\r\nelement vertex 3\r\n"
+    TriangleMesh m = loadPly(dir.write(
+        "t.ply",
+        "ply\r\nformat ascii 1.0\r\nelement vertex 3\r\n"
         "property float32 x\r\nproperty float32 y\r\nproperty float32 z\r\nelement face 1\r\n"
         "property list int int vertex_index\r\nend_header\r\n0 0 0\r\n1 0 0\r\n0 1 0\r\n"
         "3 0 1 2\r\n\r\n"));
@@ -116,15 +122,17 @@ TEST(PlyLoader, MinimalFilesAndIndexNames) {
 
 TEST(PlyLoader, Errors) {
     TempDir dir;
-    const std::string head = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
-                             "property float y\nproperty float z\nelement face 1\n"
-                             "property list uchar int vertex_indices\nend_header\n";
+    const std::string head =
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+        "property float y\nproperty float z\nelement face 1\n"
+        "property list uchar int vertex_indices\nend_header\n";
     auto bad = [&](const std::string& text, int line, const std::string& reason) {
         std::string path = dir.write("bad.ply", text);
         expectError([&] { loadPly(path); }, "bad.ply", line, reason);
     };
     bad(head + "0 0 0\n1 0 0\n0 x 0\n3 0 1 2\n", 12, "element 'vertex' 2: bad number 'x' for 'y'");
-    bad(head + "0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n", 13, "face 0 references vertex 7 but the file has 3");
+    bad(head + "0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n", 13,
+        "face 0 references vertex 7 but the file has 3");
     bad(head + "0 0 0\n1 0 0\n0 1 0\n2 0 1\n", 13, "face 0 has 2 vertices");
     bad(head + "0 0 0\n1 0 0\n", 11, "file ends before element 'vertex' 2");
     bad(head + "0 0 0\n1 0 0\n0 1 0 5\n3 0 1 2\n", 12, "1 values too many");
@@ -138,14 +146,16 @@ TEST(PlyLoader, Errors) {
         "element face 0\nproperty list uchar int vertex_indices\nend_header\n0 0\n",
         3, "element 'vertex' has no property 'x'");
     bad("ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\n"
-        "property float z\nend_header\n", 0, "no 'face' element");
+        "property float z\nend_header\n",
+        0, "no 'face' element");
     bad("solid cube\n", 1, "not a PLY file");
     bad(head + "0 0 0\n1 0 0\n0 1 0\n", 0, "file ends before element 'face' 0");
     std::string bin = squarePly(PlyWriter::Little);
     bad(bin.substr(0, bin.size() - 10), 0, "file ends inside element 'face' 1");
-    std::string empty = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
-                        "property float y\nproperty float z\nelement face 0\n"
-                        "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n";
+    std::string empty =
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+        "property float y\nproperty float z\nelement face 0\n"
+        "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n";
     bad(empty, 0, "mesh has no triangles");
 }
 

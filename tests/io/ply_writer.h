@@ -21,8 +21,10 @@ public:
     template <class T>
     void put(T v) {
         if (format_ == Ascii) {
-            if constexpr (sizeof(T) == 1) body_ += std::to_string(int(v)) + " ";
-            else body_ += std::to_string(v) + " ";
+            if constexpr (sizeof(T) == 1)
+                body_ += std::to_string(int(v)) + " ";
+            else
+                body_ += std::to_string(v) + " ";
             return;
         }
         unsigned char b[sizeof(T)];

@@ -61,15 +61,15 @@ TEST(Robustness, DamagedSceneXml) {
 TEST(Robustness, DamagedPly) {
     TempDir dir;
     for (auto format : {PlyWriter::Ascii, PlyWriter::Little, PlyWriter::Big})
-        damage(dir, "m.ply", squarePly(format), 1, 300, [](const std::string& p) {
-            meshio::loadPly(p);
-        });
+        damage(dir, "m.ply", squarePly(format), 1, 300,
+               [](const std::string& p) { meshio::loadPly(p); });
 }
 
 TEST(Robustness, DamagedObj) {
     TempDir dir;
-    const std::string obj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 1\nvn 0 0 1\n"
-                            "f 1/1/1 2/2/1 3/1/1 4/2/1\nf -1 -2 -3\n";
+    const std::string obj =
+        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 1\nvn 0 0 1\n"
+        "f 1/1/1 2/2/1 3/1/1 4/2/1\nf -1 -2 -3\n";
     damage(dir, "m.obj", obj, 1, 300, [](const std::string& p) { meshio::loadObj(p); });
 }
 

@@ -4,12 +4,12 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <atomic>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <string>
-#include <unistd.h>
 
 #include "caustica/io/scene_loader.h"
 #include "caustica/util/error.h"
@@ -45,7 +45,8 @@ private:
 };
 
 /// The minimal sensor every loadable scene needs.
-inline const char* kSensor = R"(<sensor type="perspective"><float name="fov" value="45"/></sensor>)";
+inline const char* kSensor =
+    R"(<sensor type="perspective"><float name="fov" value="45"/></sensor>)";
 
 /// `<scene version="3.0.0">` + body + `</scene>`, with the default sensor unless told otherwise.
 inline std::string sceneXml(const std::string& body, bool withSensor = true) {
@@ -74,7 +75,8 @@ inline void expectError(const std::function<void()>& fn, const std::string& file
             std::string tag = std::string(1, ':').append(std::to_string(line)).append(1, ':');
             EXPECT_NE(msg.find(tag), std::string::npos) << "line " << line << " not in: " << msg;
         }
-        EXPECT_NE(msg.find(reason), std::string::npos) << "reason '" << reason << "' not in: " << msg;
+        EXPECT_NE(msg.find(reason), std::string::npos)
+            << "reason '" << reason << "' not in: " << msg;
         EXPECT_EQ(msg.find('\n'), std::string::npos) << "message spans lines: " << msg;
     }
 }

@@ -11,8 +11,8 @@ constexpr double kDeg = M_PI / 180.0;
 
 Scene sensorScene(const std::string& sensorBody, const std::string& extra = "") {
     TempDir dir;
-    return loadXml(dir, sceneXml("<sensor type=\"perspective\">" + sensorBody + "</sensor>" + extra,
-                                 false));
+    return loadXml(
+        dir, sceneXml("<sensor type=\"perspective\">" + sensorBody + "</sensor>" + extra, false));
 }
 
 std::string film(int w, int h) {
@@ -52,16 +52,20 @@ struct FovCase {
 TEST(Sensor, FovAxisVariants) {
     const double t = std::tan(30 * kDeg);
     const FovCase cases[] = {
-        {"x", 200, 100, t, t / 2},       {"y", 200, 100, 2 * t, t},
-        {"smaller", 200, 100, 2 * t, t}, {"smaller", 100, 200, t, 2 * t},
-        {"larger", 200, 100, t, t / 2},  {"larger", 100, 200, t / 2, t},
+        {"x", 200, 100, t, t / 2},
+        {"y", 200, 100, 2 * t, t},
+        {"smaller", 200, 100, 2 * t, t},
+        {"smaller", 100, 200, t, 2 * t},
+        {"larger", 200, 100, t, t / 2},
+        {"larger", 100, 200, t / 2, t},
         {"diagonal", 300, 400, t * 3 / 5, t * 4 / 5},
     };
     for (const FovCase& c : cases) {
         SCOPED_TRACE(std::string(c.axis) + " " + std::to_string(c.width) + "x" +
                      std::to_string(c.height));
-        Scene s = sensorScene("<float name=\"fov\" value=\"60\"/><string name=\"fov_axis\" value=\"" +
-                              std::string(c.axis) + "\"/>" + film(c.width, c.height));
+        Scene s =
+            sensorScene("<float name=\"fov\" value=\"60\"/><string name=\"fov_axis\" value=\"" +
+                        std::string(c.axis) + "\"/>" + film(c.width, c.height));
         EXPECT_NEAR(s.camera.tanHalfX, c.tanX, 1e-6);
         EXPECT_NEAR(s.camera.tanHalfY, c.tanY, 1e-6);
     }
@@ -100,11 +104,12 @@ TEST(Sensor, FiltersAndSampler) {
 TEST(Sensor, IgnoredFilmParametersWarn) {
     TempDir dir;
     std::vector<std::string> warnings;
-    loadXml(dir, sceneXml(R"(<sensor type="perspective"><film type="hdrfilm">
+    loadXml(dir,
+            sceneXml(R"(<sensor type="perspective"><film type="hdrfilm">
         <string name="pixel_format" value="rgba"/>
         <string name="file_format" value="openexr"/>
     </film></sensor>)",
-                          false),
+                     false),
             &warnings);
     EXPECT_TRUE(hasWarning(warnings, {"scene.xml:4:", "'pixel_format' is ignored"}));
     EXPECT_TRUE(hasWarning(warnings, {"scene.xml:5:", "'file_format' is ignored"}));
@@ -122,7 +127,8 @@ TEST(Sensor, Integrator) {
 TEST(Sensor, RefusedSettings) {
     TempDir dir;
     auto bad = [&](const std::string& body, int line, const std::string& reason) {
-        std::string path = dir.write("s.xml", "<scene version=\"3.0.0\">\n" + body + "\n</scene>\n");
+        std::string path =
+            dir.write("s.xml", "<scene version=\"3.0.0\">\n" + body + "\n</scene>\n");
         expectError([&] { loadScene(path); }, "s.xml", line, reason);
     };
     bad("<sensor type=\"perspective\">\n" + film(0, 10) + "</sensor>", 3, "absurd resolution 0x10");
@@ -134,7 +140,8 @@ TEST(Sensor, RefusedSettings) {
         4, "'crop_width' (film cropping) is not supported yet");
     bad("<sensor type=\"perspective\">\n<film type=\"specfilm\"/></sensor>", 3,
         "unsupported film type 'specfilm'");
-    bad("<sensor type=\"thinlens\"/>", 2, "unsupported sensor type 'thinlens' (supported: perspective)");
+    bad("<sensor type=\"thinlens\"/>", 2,
+        "unsupported sensor type 'thinlens' (supported: perspective)");
     bad("<sensor type=\"perspective\">\n<float name=\"fov\" value=\"180\"/></sensor>", 3,
         "between 0 and 180");
     bad("<sensor type=\"perspective\">\n<string name=\"fov_axis\" value=\"z\"/>\n"
@@ -152,8 +159,9 @@ TEST(Sensor, RefusedSettings) {
         4, "'sample_count' must be positive");
     bad(std::string(kSensor) + "\n<integrator type=\"sppm\"/>", 3,
         "unsupported integrator type 'sppm' (supported: path)");
-    bad(std::string(kSensor) + "\n<integrator type=\"path\">\n<integer name=\"max_depth\" "
-        "value=\"-2\"/></integrator>",
+    bad(std::string(kSensor) +
+            "\n<integrator type=\"path\">\n<integer name=\"max_depth\" "
+            "value=\"-2\"/></integrator>",
         4, "must be -1 (unbounded) or >= 0");
     bad(std::string(kSensor) + "\n<integrator type=\"path\"/>\n<integrator type=\"path\"/>", 4,
         "a second integrator");

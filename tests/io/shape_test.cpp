@@ -47,8 +47,8 @@ TEST(BuiltinShapes, CubeHasTwelveOutwardTriangles) {
         Vec3f a = s.positions[t.x], b = s.positions[t.y], c = s.positions[t.z];
         Vec3f face = cross(b - a, c - a);
         Vec3f out = (a + b + c) / 3 - center;
-        EXPECT_GT(dot(face, out), 0);                 // winding: outward
-        EXPECT_GT(dot(s.normals[t.x], out), 0);       // stored normal: outward
+        EXPECT_GT(dot(face, out), 0);            // winding: outward
+        EXPECT_GT(dot(s.normals[t.x], out), 0);  // stored normal: outward
     }
 }
 
@@ -64,8 +64,10 @@ TEST(BuiltinShapes, DiskAreaIsPiWithinTolerance) {
 
 TEST(BuiltinShapes, Spheres) {
     Scene s = oneShape(R"(
-        <shape type="sphere"><point name="center" value="1, 2, 3"/><float name="radius" value="0.5"/></shape>
-        <shape type="sphere"><transform name="to_world"><scale value="2"/><translate z="-1"/></transform></shape>
+        <shape type="sphere"><point name="center" value="1, 2, 3"/>
+            <float name="radius" value="0.5"/></shape>
+        <shape type="sphere"><transform name="to_world">
+            <scale value="2"/><translate z="-1"/></transform></shape>
         <shape type="sphere"><float name="radius" value="-2"/></shape>
         <shape type="sphere"><boolean name="flip_normals" value="true"/></shape>)");
     ASSERT_EQ(s.spheres.size(), 4u);
@@ -81,8 +83,9 @@ TEST(BuiltinShapes, Spheres) {
     EXPECT_EQ(s.spheres[3].shape, 3u);
     EXPECT_EQ(s.shapes[3].primOffset, 3u);
     TempDir dir;
-    std::string bad = dir.write("s.xml", sceneXml(
-        "<shape type=\"sphere\">\n<transform name=\"to_world\"><scale x=\"2\"/></transform></shape>"));
+    std::string bad =
+        dir.write("s.xml", sceneXml("<shape type=\"sphere\">\n<transform name=\"to_world\"><scale "
+                                    "x=\"2\"/></transform></shape>"));
     expectError([&] { loadScene(bad); }, "s.xml", 3, "to_world must scale uniformly");
 }
 
@@ -114,10 +117,11 @@ TEST(MeshShapes, ObjThroughXmlWithTransformAndComputedNormals) {
 
 TEST(MeshShapes, PlyNormalsTransformByInverseTranspose) {
     TempDir dir;
-    dir.write("n.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                       "property float z\nproperty float nx\nproperty float ny\nproperty float nz\n"
-                       "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
-                       "0 0 0 1 1 0\n1 0 0 1 1 0\n0 1 0 1 1 0\n3 0 1 2\n");
+    dir.write("n.ply",
+              "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+              "property float z\nproperty float nx\nproperty float ny\nproperty float nz\n"
+              "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+              "0 0 0 1 1 0\n1 0 0 1 1 0\n0 1 0 1 1 0\n3 0 1 2\n");
     Scene s = loadXml(dir, sceneXml(R"(<shape type="ply"><string name="filename" value="n.ply"/>
         <transform name="to_world"><scale x="2"/></transform></shape>)"));
     // (1,1,0) under diag(2,1,1)^-T = (0.5,1,0), normalised.
@@ -130,18 +134,23 @@ TEST(MeshShapes, PlyNormalsTransformByInverseTranspose) {
 TEST(MeshShapes, MeshFileErrorsNameBothFiles) {
     TempDir dir;
     dir.write("broken.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n");
-    std::string path = dir.write("scene.xml", sceneXml(
-        "<shape type=\"obj\">\n<string name=\"filename\" value=\"broken.obj\"/>\n</shape>"));
+    std::string path = dir.write(
+        "scene.xml",
+        sceneXml(
+            "<shape type=\"obj\">\n<string name=\"filename\" value=\"broken.obj\"/>\n</shape>"));
     expectError([&] { loadScene(path); }, "scene.xml:4:", 4, "broken.obj:4: vertex index 4");
-    std::string missing = dir.write("m.xml", sceneXml(
-        "<shape type=\"ply\">\n<string name=\"filename\" value=\"nowhere.ply\"/>\n</shape>"));
+    std::string missing = dir.write(
+        "m.xml",
+        sceneXml(
+            "<shape type=\"ply\">\n<string name=\"filename\" value=\"nowhere.ply\"/>\n</shape>"));
     expectError([&] { loadScene(missing); }, "m.xml", 4, "nowhere.ply: cannot open mesh file");
     std::string nofile = dir.write("f.xml", sceneXml("<shape type=\"obj\"/>"));
     expectError([&] { loadScene(nofile); }, "f.xml", 3, "missing required parameter 'filename'");
 }
 
 TEST(MeshShapes, FlipNormalsAndUnknownShapes) {
-    Scene s = oneShape("<shape type=\"cube\"><boolean name=\"flip_normals\" value=\"true\"/></shape>");
+    Scene s =
+        oneShape("<shape type=\"cube\"><boolean name=\"flip_normals\" value=\"true\"/></shape>");
     EXPECT_TRUE(s.shapes[0].flipNormals);
     TempDir dir;
     std::string path = dir.write("u.xml", sceneXml("<shape type=\"cylinder\"/>"));

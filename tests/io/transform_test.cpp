@@ -47,8 +47,7 @@ TEST(Transform, RotateIsRightHandedInDegrees) {
 
 TEST(Transform, MatrixIsRowMajor) {
     // x' = 2x + 1, y' = z + 2, z' = -y + 3.
-    Placed m = placeRectangle(
-        "<matrix value=\"2 0 0 1  0 0 1 2  0 -1 0 3  0 0 0 1\"/>");
+    Placed m = placeRectangle("<matrix value=\"2 0 0 1  0 0 1 2  0 -1 0 3  0 0 0 1\"/>");
     expectNear(m.p10, Vec3f(3, 2, 4));
     expectNear(m.p01, Vec3f(-1, 2, 2));
     expectNear(m.normal, Vec3f(0, 1, 0));  // inverse transpose of the linear part maps +z to +y
@@ -66,7 +65,8 @@ TEST(Transform, OperationsComposeInDocumentOrder) {
 TEST(Transform, LookAtBuildsMitsubasCameraFrame) {
     TempDir dir;
     Scene s = loadXml(dir, sceneXml(R"(<sensor type="perspective">
-        <transform name="to_world"><lookat origin="1, 2, 3" target="1, 2, 0" up="0, 1, 0"/></transform>
+        <transform name="to_world">
+            <lookat origin="1, 2, 3" target="1, 2, 0" up="0, 1, 0"/></transform>
     </sensor>)",
                                     false));
     const Matrix4& m = s.camera.worldFromCamera.m;
@@ -91,9 +91,11 @@ TEST(Transform, LookAtWithoutUpPicksAPerpendicular) {
 
 TEST(Transform, MirrorKeepsWindingAndTransformsNormalsByInverseTranspose) {
     TempDir dir;
-    Scene s = loadXml(dir, sceneXml(
-        "<shape type=\"rectangle\"><transform name=\"to_world\"><scale x=\"-1\"/></transform>"
-        "</shape>"));
+    Scene s = loadXml(
+        dir,
+        sceneXml(
+            "<shape type=\"rectangle\"><transform name=\"to_world\"><scale x=\"-1\"/></transform>"
+            "</shape>"));
     // The rectangle's normal is Mitsuba's analytic one: diag(-1,1,1)^-T (0,0,1) = (0,0,1) ...
     expectNear(s.normals[0], Vec3f(0, 0, 1));
     EXPECT_TRUE(s.shapes[0].hasNormals);
@@ -106,8 +108,9 @@ TEST(Transform, MirrorKeepsWindingAndTransformsNormalsByInverseTranspose) {
 TEST(Transform, RefusedTransforms) {
     TempDir dir;
     auto bad = [&](const std::string& ops, const std::string& reason, int line = 5) {
-        std::string path = dir.write("t.xml", sceneXml(
-            "<shape type=\"cube\">\n<transform name=\"to_world\">\n" + ops + "\n</transform>\n</shape>"));
+        std::string path =
+            dir.write("t.xml", sceneXml("<shape type=\"cube\">\n<transform name=\"to_world\">\n" +
+                                        ops + "\n</transform>\n</shape>"));
         expectError([&] { loadScene(path); }, "t.xml", line, reason);
     };
     bad("<translate x=\"nan\"/>", "cannot read 'nan' as a finite number");

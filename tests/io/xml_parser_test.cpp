@@ -39,7 +39,7 @@ TEST(XmlParser, DefaultsAndDefinesSubstituteAnyAttribute) {
             <integer name="max_depth" value="$depth"/>
             <integer name="rr_depth" value="1$depth"/>
         </integrator>)",
-                                     false) ;
+                                     false);
     const std::string sensor = R"(<sensor type="perspective"><sampler type="independent">
             <integer name="sample_count" value="$spp"/></sampler></sensor>)";
     std::string full = xml;
@@ -110,7 +110,8 @@ TEST(XmlParser, ReferencesShareOneRecordAndMayPointToNestedObjects) {
 
 TEST(XmlParser, UnknownAndDuplicateIdsAreErrors) {
     TempDir dir;
-    std::string a = dir.write("a.xml", sceneXml("<shape type=\"cube\">\n<ref id=\"nope\"/>\n</shape>"));
+    std::string a =
+        dir.write("a.xml", sceneXml("<shape type=\"cube\">\n<ref id=\"nope\"/>\n</shape>"));
     expectError([&] { loadScene(a); }, "a.xml", 4, "<ref id=\"nope\">: no object has this id");
     std::string b = dir.write("b.xml", sceneXml("<bsdf type=\"diffuse\" id=\"x\"/>\n"
                                                 "<bsdf type=\"diffuse\" id=\"x\"/>"));
@@ -153,10 +154,12 @@ TEST(XmlParser, LegacyVersionIsUpgradedLikeMitsuba) {
         <sensor type="perspective">
             <float name="fov" value="30"/>
             <string name="fovAxis" value="y"/>
-            <transform name="toWorld"><lookAt origin="0, 0, 5" target="0, 0, 0" up="0, 1, 0"/></transform>
+            <transform name="toWorld">
+                <lookAt origin="0, 0, 5" target="0, 0, 0" up="0, 1, 0"/></transform>
             <sampler type="independent"><integer name="sampleCount" value="9"/></sampler>
         </sensor>
-        <shape type="rectangle"><bsdf type="dielectric"><float name="intIOR" value="1.33"/></bsdf></shape>
+        <shape type="rectangle">
+            <bsdf type="dielectric"><float name="intIOR" value="1.33"/></bsdf></shape>
     </scene>)");
     EXPECT_EQ(s.sampleCount, 9);
     EXPECT_NEAR(s.camera.tanHalfY, std::tan(0.5 * 30 * M_PI / 180), 1e-6);

@@ -38,11 +38,13 @@ struct alignas(32) BvhNode {
 static_assert(sizeof(BvhNode) == 32, "BvhNode must stay 32 bytes");
 
 /// Primitive data in leaf order, precomputed for traversal so that a leaf test reads one contiguous
-/// record instead of an index and three scattered vertices. Triangle: p0 = vertex 0, e1 = p1 - p0,
-/// e2 = p2 - p0 (the exact values intersectPrimitive computes, so results are bit-identical).
-/// Sphere: p0 = centre, e1.x = radius.
+/// 40-byte record instead of an index and three scattered vertices. Triangle: p0 = vertex 0,
+/// e1 = p1 - p0, e2 = p2 - p0 (the exact values intersectPrimitive computes, so results are
+/// bit-identical). Sphere: p0 = centre, e1.x = radius.
 struct BvhPrimitive {
-    Vec3f p0, e1, e2;
+    Vec3f p0;
+    uint32_t primId = 0;  // = primIndices[i], kept here to save a memory access per primitive
+    Vec3f e1, e2;
 };
 
 /// What kernels take: spans over the BVH arrays (device copies on the GPU). `prims` may be empty,

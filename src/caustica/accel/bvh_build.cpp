@@ -217,6 +217,7 @@ Bvh buildBvh(const Scene& scene, const BvhBuildOptions& options) {
             tbb::parallel_for(uint32_t(0), numPrims, [&](uint32_t i) {
                 const uint32_t id = bvh.primIndices[i];
                 BvhPrimitive& p = bvh.prims[i];
+                p.primId = id;
                 if (id < numTriangles) {
                     const Vec3u tri = scene.triangles[id];
                     p.p0 = scene.positions[tri.x];

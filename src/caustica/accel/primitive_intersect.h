@@ -36,8 +36,11 @@ CA_HD_INLINE bool intersectTriangle(Vec3f o, Vec3f d, Float tMax, Vec3f p0, Vec3
         tNum = -tNum;
         absDen = -den;
     }
-    // All comparisons are written so that NaNs (non-finite input) reject.
-    if (!(absDen > 0 && u >= 0 && v >= 0 && u + v <= absDen && tNum > 0)) return false;
+    // One branch for all conditions (non-short-circuit &): a chain of data-dependent early exits
+    // mispredicts often in traversal. Every comparison rejects NaNs (non-finite input).
+    if (!((absDen > 0) & (u >= 0) & (v >= 0) & (u + v <= absDen) & (tNum > 0) &
+          (tNum < absDen * tMax)))
+        return false;
     const Float invDen = 1 / absDen;
     const Float t = tNum * invDen;
     if (!(t > 0 && t < tMax)) return false;

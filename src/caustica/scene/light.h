@@ -65,7 +65,7 @@ CA_HD_INLINE void sampleSphereCone(const Sphere& s, Vec3f refP, Float omc, Float
 CA_HD_INLINE Float areaToSolidAngle(Vec3f refP, Vec3f p, Vec3f n, Float area) {
     const Vec3f d = p - refP;
     const Float d2 = lengthSquared(d);
-    if (!(d2 > 0)) return 0;
+    if (!(d2 > 0) || !(area > 0)) return 0;  // area 0: finalizeLights has not run
     const Float cosL = -dot(d, n) / std::sqrt(d2);
     if (!(cosL > 0)) return 0;  // back side of a one-sided emitter
     return d2 / (cosL * area);

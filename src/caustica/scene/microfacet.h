@@ -1,7 +1,9 @@
 // microfacet.h — the anisotropic GGX (Trowbridge–Reitz) microfacet distribution with Smith
 // masking and visible-normal sampling, in a local frame whose +z is the macro-surface normal.
-// Shared CPU/GPU kernel code; matches Mitsuba 3's MicrofacetDistribution (type ggx,
-// sample_visible = true).
+// Shared CPU/GPU kernel code; the same D, G1, G and sampling density as Mitsuba 3's
+// MicrofacetDistribution (type ggx, sample_visible = true), which draws visible normals with
+// Heitz's 2014 slope method where we use the simpler, exact hemisphere method of Heitz 2018.
+// Local x is the frame's s axis: anisotropic roughness follows Frame(ns), not dp/du.
 #pragma once
 
 #include "caustica/util/math.h"

@@ -2,25 +2,16 @@
 
 #include <tiny_obj_loader.h>
 
-#include <fstream>
 #include <sstream>
 #include <unordered_map>
 
+#include "caustica/io/mesh/read_file.h"
 #include "caustica/io/mesh/text_parse.h"
 #include "caustica/util/error.h"
 
 namespace caustica::meshio {
 
 namespace {
-
-std::string readWholeFile(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(path, 0, "cannot open mesh file");
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    if (in.bad()) throw Error(path, 0, "cannot read mesh file");
-    return ss.str();
-}
 
 /// Checks one face corner "v", "v/vt", "v//vn" or "v/vt/vn" against the element counts seen so
 /// far (negative indices are relative, as in tinyobjloader) and the final counts.
@@ -35,21 +26,22 @@ void checkCorner(const std::string& path, int line, std::string_view corner, con
             start = i + 1;
         }
     if (parts.size() > 3 || parts[0].empty())
-        throw Error(path, line, "malformed face corner " + quoted(corner));
+        throw Error(path, line, "malformed face corner " + quoteText(corner));
     for (size_t k = 0; k < parts.size(); ++k) {
         if (parts[k].empty()) {
             if (k == 1 && parts.size() == 3) continue;  // v//vn
-            throw Error(path, line, "malformed face corner " + quoted(corner));
+            throw Error(path, line, "malformed face corner " + quoteText(corner));
         }
         int64_t idx = 0;
         if (!parseInt64(parts[k], idx))
-            throw Error(path, line, "bad index " + quoted(parts[k]) + " in face corner " +
-                                        quoted(corner));
+            throw Error(
+                path, line,
+                "bad index " + quoteText(parts[k]) + " in face corner " + quoteText(corner));
         int64_t resolved = idx > 0 ? idx - 1 : int64_t(seen[k]) + idx;
         if (idx == 0 || resolved < 0 || resolved >= int64_t(total[k]))
-            throw Error(path, line, std::string(kWhat[k]) + " index " + std::to_string(idx) +
-                                        " is out of range (the file has " +
-                                        std::to_string(total[k]) + ")");
+            throw Error(path, line,
+                        std::string(kWhat[k]) + " index " + std::to_string(idx) +
+                            " is out of range (the file has " + std::to_string(total[k]) + ")");
     }
 }
 
@@ -75,25 +67,31 @@ void validateObjText(const std::string& path, const std::string& text) {
                 ++seen[kind];
                 if (pass == 1) continue;
                 size_t n = tok.size() - 1;
-                bool countOk = kind == 0 ? (n == 3 || n == 4 || n == 6 || n == 7)
-                                         : kind == 1 ? (n >= 1 && n <= 3) : n == 3;
+                bool countOk = kind == 0   ? (n == 3 || n == 4 || n == 6 || n == 7)
+                               : kind == 1 ? (n >= 1 && n <= 3)
+                                           : n == 3;
                 if (!countOk)
-                    throw Error(path, line, "'" + std::string(tok[0]) + "' line has " +
-                                                std::to_string(n) + " numbers");
+                    throw Error(
+                        path, line,
+                        "'" + std::string(tok[0]) + "' line has " + std::to_string(n) + " numbers");
                 for (size_t i = 1; i < tok.size(); ++i) {
                     double v;
                     if (!parseDouble(tok[i], v))
-                        throw Error(path, line, "bad number " + quoted(tok[i]) +
-                                                    " (NaN, infinity or not a number)");
+                        throw Error(
+                            path, line,
+                            "bad number " + quoteText(tok[i]) + " (NaN, infinity or not a number)");
                 }
             } else if (tok[0] == "f" && pass == 1) {
                 if (tok.size() < 4)
-                    throw Error(path, line, "face has " + std::to_string(tok.size() - 1) +
-                                                " corners (at least 3 needed)");
+                    throw Error(path, line,
+                                "face has " + std::to_string(tok.size() - 1) +
+                                    " corners (at least 3 needed)");
                 if (tok.size() > 256)
-                    throw Error(path, line, "face has " + std::to_string(tok.size() - 1) +
-                                                " corners (at most 255 supported)");
-                for (size_t i = 1; i < tok.size(); ++i) checkCorner(path, line, tok[i], seen, total);
+                    throw Error(path, line,
+                                "face has " + std::to_string(tok.size() - 1) +
+                                    " corners (at most 255 supported)");
+                for (size_t i = 1; i < tok.size(); ++i)
+                    checkCorner(path, line, tok[i], seen, total);
             }
         }
         for (int k = 0; k < 3; ++k) total[k] = seen[k];
@@ -114,7 +112,7 @@ struct CornerHash {
 }  // namespace
 
 TriangleMesh loadObj(const std::string& path, bool flipTexCoords) {
-    const std::string text = readWholeFile(path);
+    const std::string text = readWholeFile(path, "mesh file");
     validateObjText(path, text);
 
     tinyobj::attrib_t attrib;
@@ -125,7 +123,7 @@ TriangleMesh loadObj(const std::string& path, bool flipTexCoords) {
     // No MaterialReader: mtllib lines are skipped. No triangulation: we fan like Mitsuba.
     if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &stream, nullptr, false,
                           false))
-        throw Error(path, 0, "cannot parse OBJ: " + (err.empty() ? warn : err));
+        throw Error(path, 0, "cannot parse OBJ: " + meshio::quoteText(err.empty() ? warn : err));
 
     bool allNormals = true, anyUV = false;
     size_t faces = 0;

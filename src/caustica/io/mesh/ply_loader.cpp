@@ -2,10 +2,9 @@
 
 #include <bit>
 #include <cstring>
-#include <fstream>
-#include <sstream>
 
 #include "caustica/io/mesh/ply_reader.h"
+#include "caustica/io/mesh/read_file.h"
 #include "caustica/io/mesh/text_parse.h"
 #include "caustica/util/error.h"
 
@@ -25,8 +24,8 @@ std::vector<int> vertexSlots(const PlyElement& el, bool& hasNormals, bool& hasUV
     for (int k = 0; k < 3; ++k) {
         int i = find(xyz[k]);
         if (i < 0)
-            throw Error("", el.line, "element 'vertex' has no property '" + std::string(xyz[k]) +
-                                         "'");
+            throw Error("", el.line,
+                        "element 'vertex' has no property '" + std::string(xyz[k]) + "'");
         slots[size_t(i)] = k;
     }
     int nx = find("nx"), ny = find("ny"), nz = find("nz");
@@ -122,19 +121,10 @@ void readBody(Reader& in, const PlyHeader& header, TriangleMesh& mesh) {
     in.finish();
 }
 
-std::string readWholeFile(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(path, 0, "cannot open mesh file");
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    if (in.bad()) throw Error(path, 0, "cannot read mesh file");
-    return ss.str();
-}
-
 }  // namespace
 
 TriangleMesh loadPly(const std::string& path) {
-    const std::string data = readWholeFile(path);
+    const std::string data = readWholeFile(path, "mesh file");
     TriangleMesh mesh;
     try {
         PlyHeader header = parsePlyHeader(data);

@@ -30,24 +30,38 @@ bool typeFromName(std::string_view s, PlyType& t) {
 /// Value range of an integer type, to refuse ascii values that do not fit.
 void integerRange(PlyType t, double& lo, double& hi) {
     switch (t) {
-        case PlyType::Int8: lo = -128, hi = 127; break;
-        case PlyType::UInt8: lo = 0, hi = 255; break;
-        case PlyType::Int16: lo = -32768, hi = 32767; break;
-        case PlyType::UInt16: lo = 0, hi = 65535; break;
-        case PlyType::Int32: lo = -2147483648.0, hi = 2147483647.0; break;
-        default: lo = 0, hi = 4294967295.0; break;
+        case PlyType::Int8:
+            lo = -128, hi = 127;
+            break;
+        case PlyType::UInt8:
+            lo = 0, hi = 255;
+            break;
+        case PlyType::Int16:
+            lo = -32768, hi = 32767;
+            break;
+        case PlyType::UInt16:
+            lo = 0, hi = 65535;
+            break;
+        case PlyType::Int32:
+            lo = -2147483648.0, hi = 2147483647.0;
+            break;
+        default:
+            lo = 0, hi = 4294967295.0;
+            break;
     }
 }
 
 const char* typeName(PlyType t) {
-    static const char* kNames[] = {"char", "uchar", "short", "ushort", "int", "uint", "float",
-                                   "double"};
+    static const char* kNames[] = {"char", "uchar", "short", "ushort",
+                                   "int",  "uint",  "float", "double"};
     return kNames[int(t)];
 }
 
 }  // namespace
 
-bool isIntegerType(PlyType t) { return t != PlyType::Float32 && t != PlyType::Float64; }
+bool isIntegerType(PlyType t) {
+    return t != PlyType::Float32 && t != PlyType::Float64;
+}
 
 size_t typeSize(PlyType t) {
     static const size_t kSizes[] = {1, 1, 2, 2, 4, 4, 4, 8};
@@ -76,11 +90,16 @@ PlyHeader parsePlyHeader(std::string_view data) {
         const std::string kw(tok[0]);
         if (kw == "format") {
             if (tok.size() != 3) throw Error("", line, "expected 'format <type> 1.0'");
-            if (tok[1] == "ascii") h.format = PlyFormat::Ascii;
-            else if (tok[1] == "binary_little_endian") h.format = PlyFormat::BinaryLittleEndian;
-            else if (tok[1] == "binary_big_endian") h.format = PlyFormat::BinaryBigEndian;
-            else throw Error("", line, "unknown PLY format " + quoted(tok[1]));
-            if (tok[2] != "1.0") throw Error("", line, "unsupported PLY version " + quoted(tok[2]));
+            if (tok[1] == "ascii")
+                h.format = PlyFormat::Ascii;
+            else if (tok[1] == "binary_little_endian")
+                h.format = PlyFormat::BinaryLittleEndian;
+            else if (tok[1] == "binary_big_endian")
+                h.format = PlyFormat::BinaryBigEndian;
+            else
+                throw Error("", line, "unknown PLY format " + quoteText(tok[1]));
+            if (tok[2] != "1.0")
+                throw Error("", line, "unsupported PLY version " + quoteText(tok[2]));
             sawFormat = true;
         } else if (kw == "element") {
             int64_t count = 0;
@@ -88,7 +107,7 @@ PlyHeader parsePlyHeader(std::string_view data) {
                 throw Error("", line, "expected 'element <name> <count>'");
             for (const PlyElement& e : h.elements)
                 if (e.name == tok[1])
-                    throw Error("", line, "element " + quoted(tok[1]) + " declared twice");
+                    throw Error("", line, "element " + quoteText(tok[1]) + " declared twice");
             h.elements.push_back({std::string(tok[1]), uint64_t(count), {}, line});
         } else if (kw == "property") {
             if (h.elements.empty()) throw Error("", line, "'property' before any 'element'");
@@ -106,8 +125,9 @@ PlyHeader parsePlyHeader(std::string_view data) {
                 if (ok) p.name = std::string(tok[2]);
             }
             if (!ok)
-                throw Error("", line, "expected 'property <type> <name>' or 'property list "
-                                      "<count type> <item type> <name>' with known types");
+                throw Error("", line,
+                            "expected 'property <type> <name>' or 'property list "
+                            "<count type> <item type> <name>' with known types");
             h.elements.back().properties.push_back(p);
         } else if (kw == "end_header") {
             if (!sawFormat) throw Error("", line, "PLY header has no 'format' line");
@@ -115,7 +135,7 @@ PlyHeader parsePlyHeader(std::string_view data) {
             h.dataLine = line + 1;
             return h;
         } else {
-            throw Error("", line, "unknown PLY header keyword " + quoted(tok[0]));
+            throw Error("", line, "unknown PLY header keyword " + quoteText(tok[0]));
         }
     }
 }
@@ -123,7 +143,9 @@ PlyHeader parsePlyHeader(std::string_view data) {
 AsciiPlyReader::AsciiPlyReader(std::string_view data, size_t offset, int firstLine)
     : data_(data), pos_(offset), line_(firstLine - 1) {}
 
-void AsciiPlyReader::fail(const std::string& reason) const { throw Error("", line_, reason); }
+void AsciiPlyReader::fail(const std::string& reason) const {
+    throw Error("", line_, reason);
+}
 
 void AsciiPlyReader::beginRecord(const std::string& element, uint64_t index) {
     element_ = element;
@@ -132,8 +154,9 @@ void AsciiPlyReader::beginRecord(const std::string& element, uint64_t index) {
     next_ = 0;
     while (tokens_.empty()) {
         if (pos_ >= data_.size())
-            throw Error("", line_, "file ends before element '" + element + "' " +
-                                       std::to_string(index) + " (header promises more)");
+            throw Error("", line_,
+                        "file ends before element '" + element + "' " + std::to_string(index) +
+                            " (header promises more)");
         size_t end = data_.find('\n', pos_);
         if (end == std::string_view::npos) end = data_.size();
         tokens_ = tokenize(data_.substr(pos_, end - pos_), " \t\r");
@@ -154,11 +177,11 @@ double AsciiPlyReader::scalar(PlyType type, const std::string& property) {
         integerRange(type, lo, hi);
         if (!parseInt64(t, i) || double(i) < lo || double(i) > hi)
             fail("element '" + element_ + "' " + std::to_string(index_) + ": bad " +
-                 typeName(type) + " value " + quoted(t) + " for '" + property + "'");
+                 typeName(type) + " value " + quoteText(t) + " for '" + property + "'");
         v = double(i);
     } else if (!parseDouble(t, v)) {
-        fail("element '" + element_ + "' " + std::to_string(index_) + ": bad number " + quoted(t) +
-             " for '" + property + "' (NaN, infinity or not a number)");
+        fail("element '" + element_ + "' " + std::to_string(index_) + ": bad number " +
+             quoteText(t) + " for '" + property + "' (NaN, infinity or not a number)");
     }
     return v;
 }
@@ -176,16 +199,20 @@ void AsciiPlyReader::endRecord() {
 void AsciiPlyReader::finish() {
     int line = line_ + 1;  // pos_ is at the start of the line after the last record
     for (size_t i = pos_; i < data_.size(); ++i) {
-        if (data_[i] == '\n') ++line;
+        if (data_[i] == '\n')
+            ++line;
         else if (!std::isspace(static_cast<unsigned char>(data_[i])))
-            throw Error("", line, "unexpected data after the last element (header counts too small?)");
+            throw Error("", line,
+                        "unexpected data after the last element (header counts too small?)");
     }
 }
 
 BinaryPlyReader::BinaryPlyReader(std::string_view data, size_t offset, bool swap)
     : data_(data), pos_(offset), swap_(swap) {}
 
-void BinaryPlyReader::fail(const std::string& reason) const { throw Error("", 0, reason); }
+void BinaryPlyReader::fail(const std::string& reason) const {
+    throw Error("", 0, reason);
+}
 
 void BinaryPlyReader::beginRecord(const std::string& element, uint64_t index) {
     element_ = element;
@@ -202,14 +229,43 @@ double BinaryPlyReader::scalar(PlyType type, const std::string& property) {
     pos_ += n;
     if (swap_) std::reverse(b, b + n);
     switch (type) {
-        case PlyType::Int8: { int8_t v; std::memcpy(&v, b, 1); return v; }
-        case PlyType::UInt8: return b[0];
-        case PlyType::Int16: { int16_t v; std::memcpy(&v, b, 2); return v; }
-        case PlyType::UInt16: { uint16_t v; std::memcpy(&v, b, 2); return v; }
-        case PlyType::Int32: { int32_t v; std::memcpy(&v, b, 4); return v; }
-        case PlyType::UInt32: { uint32_t v; std::memcpy(&v, b, 4); return v; }
-        case PlyType::Float32: { float v; std::memcpy(&v, b, 4); return v; }
-        case PlyType::Float64: { double v; std::memcpy(&v, b, 8); return v; }
+        case PlyType::Int8: {
+            int8_t v;
+            std::memcpy(&v, b, 1);
+            return v;
+        }
+        case PlyType::UInt8:
+            return b[0];
+        case PlyType::Int16: {
+            int16_t v;
+            std::memcpy(&v, b, 2);
+            return v;
+        }
+        case PlyType::UInt16: {
+            uint16_t v;
+            std::memcpy(&v, b, 2);
+            return v;
+        }
+        case PlyType::Int32: {
+            int32_t v;
+            std::memcpy(&v, b, 4);
+            return v;
+        }
+        case PlyType::UInt32: {
+            uint32_t v;
+            std::memcpy(&v, b, 4);
+            return v;
+        }
+        case PlyType::Float32: {
+            float v;
+            std::memcpy(&v, b, 4);
+            return v;
+        }
+        case PlyType::Float64: {
+            double v;
+            std::memcpy(&v, b, 8);
+            return v;
+        }
     }
     return 0;
 }

@@ -54,7 +54,7 @@ inline std::vector<std::string_view> tokenize(std::string_view s,
 
 /// Quotes text for a one-line error message: blanks trimmed, line breaks and tabs turned into
 /// spaces, very long text shortened.
-inline std::string quoted(std::string_view s) {
+inline std::string quoteText(std::string_view s) {
     while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
     while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
     std::string out(1, '\'');

@@ -11,20 +11,30 @@ namespace {
 struct Vec3d {
     double x, y, z;
 };
-Vec3d toDouble(Vec3f v) { return {v.x, v.y, v.z}; }
-Vec3d sub(Vec3d a, Vec3d b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+Vec3d toDouble(Vec3f v) {
+    return {v.x, v.y, v.z};
+}
+Vec3d sub(Vec3d a, Vec3d b) {
+    return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
 Vec3d cross(Vec3d a, Vec3d b) {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-double dot(Vec3d a, Vec3d b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-double norm(Vec3d a) { return std::sqrt(dot(a, a)); }
+double dot(Vec3d a, Vec3d b) {
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+double norm(Vec3d a) {
+    return std::sqrt(dot(a, a));
+}
 
 /// Angle between two vectors, robust for small and large angles.
 double angleBetween(Vec3d a, Vec3d b) {
     return std::atan2(norm(cross(a, b)), dot(a, b));
 }
 
-bool finite2(Vec2f v) { return std::isfinite(v.x) && std::isfinite(v.y); }
+bool finite2(Vec2f v) {
+    return std::isfinite(v.x) && std::isfinite(v.y);
+}
 
 }  // namespace
 
@@ -39,7 +49,8 @@ void validateMesh(const TriangleMesh& mesh, const std::string& source) {
     const size_t n = mesh.positions.size();
     for (size_t i = 0; i < n; ++i) {
         if (!isFinite(mesh.positions[i]))
-            throw Error(source, 0, "vertex " + std::to_string(i) + " has a NaN or infinite position");
+            throw Error(source, 0,
+                        "vertex " + std::to_string(i) + " has a NaN or infinite position");
         if (mesh.hasNormals() && !isFinite(mesh.normals[i]))
             throw Error(source, 0, "vertex " + std::to_string(i) + " has a NaN or infinite normal");
         if (mesh.hasUVs() && !finite2(mesh.uvs[i]))
@@ -83,9 +94,9 @@ void computeVertexNormals(TriangleMesh& mesh) {
     mesh.normals.resize(mesh.positions.size());
     for (size_t i = 0; i < sum.size(); ++i) {
         double len = norm(sum[i]);
-        mesh.normals[i] = len > 0 ? Vec3f(Float(sum[i].x / len), Float(sum[i].y / len),
-                                          Float(sum[i].z / len))
-                                  : Vec3f(0);
+        mesh.normals[i] =
+            len > 0 ? Vec3f(Float(sum[i].x / len), Float(sum[i].y / len), Float(sum[i].z / len))
+                    : Vec3f(0);
     }
 }
 

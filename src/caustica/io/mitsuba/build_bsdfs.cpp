@@ -27,14 +27,14 @@ struct NamedIor {
     Float value;
 };
 constexpr NamedIor kIorTable[] = {
-    {"vacuum", 1.0f},           {"helium", 1.000036f},        {"hydrogen", 1.000132f},
-    {"air", 1.000277f},         {"carbon dioxide", 1.00045f}, {"water", 1.3330f},
-    {"acetone", 1.36f},         {"ethanol", 1.361f},          {"carbon tetrachloride", 1.461f},
-    {"glycerol", 1.4729f},      {"benzene", 1.501f},          {"silicone oil", 1.52045f},
-    {"bromine", 1.661f},        {"water ice", 1.31f},         {"fused quartz", 1.458f},
-    {"pyrex", 1.470f},          {"acrylic glass", 1.49f},     {"polypropylene", 1.49f},
-    {"bk7", 1.5046f},           {"sodium chloride", 1.544f},  {"amber", 1.55f},
-    {"pet", 1.5750f},           {"diamond", 2.419f}};
+    {"vacuum", 1.0f},      {"helium", 1.000036f},        {"hydrogen", 1.000132f},
+    {"air", 1.000277f},    {"carbon dioxide", 1.00045f}, {"water", 1.3330f},
+    {"acetone", 1.36f},    {"ethanol", 1.361f},          {"carbon tetrachloride", 1.461f},
+    {"glycerol", 1.4729f}, {"benzene", 1.501f},          {"silicone oil", 1.52045f},
+    {"bromine", 1.661f},   {"water ice", 1.31f},         {"fused quartz", 1.458f},
+    {"pyrex", 1.470f},     {"acrylic glass", 1.49f},     {"polypropylene", 1.49f},
+    {"bk7", 1.5046f},      {"sodium chloride", 1.544f},  {"amber", 1.55f},
+    {"pet", 1.5750f},      {"diamond", 2.419f}};
 
 /// An index of refraction given as a float or as one of Mitsuba's material names.
 Float readIor(const Params& p, const std::string& name, Float def) {
@@ -62,7 +62,8 @@ void readConductorIor(const Params& p, Bsdf& b) {
     std::string material = p.getString("material", "none");
     if (material != "none") {
         if (p.has("eta") || p.has("k"))
-            p.fail(*p.find("material"), "cannot be combined with 'eta'/'k' (give one or the other)");
+            p.fail(*p.find("material"),
+                   "cannot be combined with 'eta'/'k' (give one or the other)");
         p.fail(*p.find("material"), "names measured conductor data ('" + material +
                                         "'), which is not supported yet; give 'eta' and 'k'");
     }
@@ -99,8 +100,9 @@ Bsdf roughConductor(BuildContext& ctx, Params& p) {
     Bsdf b;
     b.type = BsdfType::RoughConductor;
     if (!p.has("distribution"))
-        p.fail("no 'distribution' means Beckmann in Mitsuba 3, which is not supported yet; add "
-               "<string name=\"distribution\" value=\"ggx\"/>");
+        p.fail(
+            "no 'distribution' means Beckmann in Mitsuba 3, which is not supported yet; add "
+            "<string name=\"distribution\" value=\"ggx\"/>");
     std::string dist = p.getString("distribution");
     std::transform(dist.begin(), dist.end(), dist.begin(),
                    [](unsigned char c) { return char(std::tolower(c)); });
@@ -140,7 +142,7 @@ Bsdf twoSided(BuildContext& ctx, Params& p) {
         p.fail("needs one or two nested bsdfs, got " + std::to_string(children.size()));
     Bsdf b;
     b.type = BsdfType::TwoSided;
-    uint32_t sides[2];
+    uint32_t sides[2] = {0, 0};
     for (size_t i = 0; i < children.size(); ++i) {
         const ObjectEntity& child = ctx.desc.objects[size_t(children[i])];
         if (child.type == "twosided") p.failAtChild(children[i], "cannot wrap another twosided");

@@ -38,10 +38,10 @@ private:
 };
 
 /// The category builders. Each reads its entity through Params and appends to ctx.scene.
-Bsdf buildBsdfRecord(BuildContext& ctx, Params& params);                 // build_bsdfs.cpp
-void buildShape(BuildContext& ctx, int object);                          // build_shapes.cpp
-void buildEmitter(BuildContext& ctx, int object, int32_t shape);         // build_emitters.cpp
-void buildSensor(BuildContext& ctx, int object);                         // build_sensor.cpp
-void buildIntegrator(BuildContext& ctx, int object);                     // build_integrator.cpp
+Bsdf buildBsdfRecord(BuildContext& ctx, Params& params);          // build_bsdfs.cpp
+void buildShape(BuildContext& ctx, int object);                   // build_shapes.cpp
+void buildEmitter(BuildContext& ctx, int object, int32_t shape);  // build_emitters.cpp
+void buildSensor(BuildContext& ctx, int object);                  // build_sensor.cpp
+void buildIntegrator(BuildContext& ctx, int object);              // build_integrator.cpp
 
 }  // namespace caustica::mitsuba

@@ -26,7 +26,9 @@ int singleChild(Params& p, const std::string& category) {
     return c.empty() ? -1 : c[0];
 }
 
-FilterDesc boxFilter(Params&) { return {FilterType::Box, 0.5f, 0.5f}; }
+FilterDesc boxFilter(Params&) {
+    return {FilterType::Box, 0.5f, 0.5f};
+}
 
 FilterDesc tentFilter(Params& p) {
     Float r = p.getFloat("radius", 1.0f);
@@ -92,8 +94,7 @@ double horizontalFov(const Params& p, double aspect) {
         if (f.size() > 2 && f.compare(f.size() - 2, 2, "mm") == 0) f.resize(f.size() - 2);
         char* end = nullptr;
         double mm = std::strtod(f.c_str(), &end);
-        if (f.empty() || *end != '\0' || !(mm > 0))
-            p.fail("'focal_length' must look like '50mm'");
+        if (f.empty() || *end != '\0' || !(mm > 0)) p.fail("'focal_length' must look like '50mm'");
         // 35 mm film: the diagonal of a 36 x 24 mm frame.
         fov = 2.0 * std::atan(std::sqrt(36.0 * 36.0 + 24.0 * 24.0) / (2.0 * mm)) * 180.0 / M_PI;
         axis = "diagonal";

@@ -53,8 +53,10 @@ ShapeGeometry finishMesh(const Params& p, TriangleMesh mesh, bool readFaceNormal
     const Transform toWorld = p.getTransform("to_world");
     const bool faceNormals = readFaceNormals && p.getBool("face_normals", false);
     meshio::transformMesh(mesh, toWorld);
-    if (faceNormals) mesh.normals.clear();
-    else if (!mesh.hasNormals() && computeMissingNormals) meshio::computeVertexNormals(mesh);
+    if (faceNormals)
+        mesh.normals.clear();
+    else if (!mesh.hasNormals() && computeMissingNormals)
+        meshio::computeVertexNormals(mesh);
     try {
         meshio::validateMesh(mesh, p.object().where.file);
     } catch (const Error& e) {
@@ -67,9 +69,8 @@ ShapeGeometry finishMesh(const Params& p, TriangleMesh mesh, bool readFaceNormal
 
 ShapeGeometry objShape(BuildContext& ctx, Params& p) {
     const bool flip = p.getBool("flip_tex_coords", true);
-    TriangleMesh m = loadMeshFile(ctx, p, [&](const std::string& f) {
-        return meshio::loadObj(f, flip);
-    });
+    TriangleMesh m =
+        loadMeshFile(ctx, p, [&](const std::string& f) { return meshio::loadObj(f, flip); });
     return finishMesh(p, std::move(m), true, true);
 }
 
@@ -149,10 +150,14 @@ Shape appendGeometry(const Params& p, Scene& scene, ShapeGeometry& g, uint32_t s
     s.hasNormals = m.hasNormals();
     s.hasUVs = m.hasUVs();
     scene.positions.insert(scene.positions.end(), m.positions.begin(), m.positions.end());
-    if (m.hasNormals()) scene.normals.insert(scene.normals.end(), m.normals.begin(), m.normals.end());
-    else scene.normals.resize(scene.positions.size(), Vec3f(0));
-    if (m.hasUVs()) scene.uvs.insert(scene.uvs.end(), m.uvs.begin(), m.uvs.end());
-    else scene.uvs.resize(scene.positions.size(), Vec2f(0, 0));
+    if (m.hasNormals())
+        scene.normals.insert(scene.normals.end(), m.normals.begin(), m.normals.end());
+    else
+        scene.normals.resize(scene.positions.size(), Vec3f(0));
+    if (m.hasUVs())
+        scene.uvs.insert(scene.uvs.end(), m.uvs.begin(), m.uvs.end());
+    else
+        scene.uvs.resize(scene.positions.size(), Vec2f(0, 0));
     for (const Vec3u& t : m.triangles) {
         scene.triangles.push_back({base + t.x, base + t.y, base + t.z});
         scene.triangleShape.push_back(shapeIndex);
@@ -175,8 +180,8 @@ void buildShape(BuildContext& ctx, int object) {
     for (int e : emitters) {
         const ObjectEntity& em = ctx.desc.objects[size_t(e)];
         if (em.type != "area")
-            p.failAtChild(e, "only area emitters can be attached to a shape, not '" + em.type +
-                                 "'");
+            p.failAtChild(e,
+                          "only area emitters can be attached to a shape, not '" + em.type + "'");
         if (ctx.used.count(e)) p.failAtChild(e, em.describe() + " is already attached to a shape");
     }
     p.finish(ctx.warnings);

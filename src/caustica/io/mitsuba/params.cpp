@@ -8,7 +8,8 @@
 namespace caustica::mitsuba {
 
 Params::Params(const SceneDescription& desc, int object)
-    : desc_(desc), object_(&desc.objects[size_t(object)]),
+    : desc_(desc),
+      object_(&desc.objects[size_t(object)]),
       taken_(object_->children.size(), false) {}
 
 bool Params::has(const std::string& name) const {
@@ -101,10 +102,12 @@ Spectrum Params::getSpectrum(const std::string& name, Spectrum def) const {
     const Property* p = find(name);
     if (!p) return def;
     Spectrum s;
-    if (p->type == PropertyType::Rgb || p->type == PropertyType::Spectrum) s = p->color;
+    if (p->type == PropertyType::Rgb || p->type == PropertyType::Spectrum)
+        s = p->color;
     else if (p->type == PropertyType::Float || p->type == PropertyType::Integer)
         s = Spectrum(Float(p->number));
-    else wrongType(*p, "an <rgb>, <spectrum> or <float>");
+    else
+        wrongType(*p, "an <rgb>, <spectrum> or <float>");
     if (!s.isValid()) fail(*p, "must be finite and non-negative");
     return s;
 }

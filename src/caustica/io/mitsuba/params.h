@@ -26,7 +26,7 @@ public:
     int getInt(const std::string& name, int def) const;
     bool getBool(const std::string& name, bool def) const;
     std::string getString(const std::string& name, const std::string& def) const;
-    std::string getString(const std::string& name) const;  // required
+    std::string getString(const std::string& name) const;      // required
     Vec3f getPoint(const std::string& name, Vec3f def) const;  // <point> or <vector>
     /// <rgb>, <spectrum> or <float>; refuses NaN/Inf and negative components.
     Spectrum getSpectrum(const std::string& name, Spectrum def) const;

@@ -15,7 +15,8 @@ uint32_t BuildContext::bsdf(int object) {
     if (e.category != "bsdf")
         throw Error(e.where.file, e.where.line, e.describe() + " is used where a bsdf is expected");
     if (!inProgress_.insert(object).second)
-        throw Error(e.where.file, e.where.line, e.describe() + " refers to itself (reference cycle)");
+        throw Error(e.where.file, e.where.line,
+                    e.describe() + " refers to itself (reference cycle)");
     Params params(desc, object);
     Bsdf record = buildBsdfRecord(*this, params);
     params.finish(warnings);
@@ -83,8 +84,8 @@ Scene buildScene(const SceneDescription& desc, std::vector<std::string>& warning
         if (e.category == "emitter")
             throw Error(e.where.file, e.where.line,
                         "an area emitter must be nested in (or referenced by) a shape");
-        warnings.push_back(e.where.file + ":" + std::to_string(e.where.line) + ": " +
-                           e.describe() + " is declared but never used");
+        warnings.push_back(e.where.file + ":" + std::to_string(e.where.line) + ": " + e.describe() +
+                           " is declared but never used");
     }
     if (sensor < 0) throw Error(desc.file, 0, "scene has no sensor");
     finalizeLights(scene);

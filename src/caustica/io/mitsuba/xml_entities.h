@@ -20,7 +20,17 @@ struct SourceLocation {
     int line = 0;
 };
 
-enum class PropertyType { Float, Integer, Boolean, String, Point, Vector, Rgb, Spectrum, Transform };
+enum class PropertyType {
+    Float,
+    Integer,
+    Boolean,
+    String,
+    Point,
+    Vector,
+    Rgb,
+    Spectrum,
+    Transform
+};
 
 /// The XML tag of a property type ("float", "rgb", ...).
 const char* propertyTypeName(PropertyType type);
@@ -30,13 +40,13 @@ const char* propertyTypeName(PropertyType type);
 struct Property {
     std::string name;
     PropertyType type = PropertyType::Float;
-    double number = 0;      // Float; also Integer (as a double)
-    int64_t integer = 0;    // Integer
-    bool boolean = false;   // Boolean
-    std::string text;       // String
-    Vec3f vector;           // Point, Vector
-    Spectrum color;         // Rgb, Spectrum (single value)
-    Transform transform;    // Transform
+    double number = 0;     // Float; also Integer (as a double)
+    int64_t integer = 0;   // Integer
+    bool boolean = false;  // Boolean
+    std::string text;      // String
+    Vec3f vector;          // Point, Vector
+    Spectrum color;        // Rgb, Spectrum (single value)
+    Transform transform;   // Transform
     SourceLocation where;
     mutable bool read = false;
 };
@@ -70,7 +80,7 @@ struct ObjectEntity {
 
 /// Everything the XML files said, in document order.
 struct SceneDescription {
-    std::string file;                  // the main scene file
+    std::string file;                   // the main scene file
     std::vector<ObjectEntity> objects;  // nested objects included
     std::vector<int> topLevel;          // indices of the <scene>'s direct children
     std::map<std::string, int> ids;     // id -> object index

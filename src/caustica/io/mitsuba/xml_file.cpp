@@ -8,7 +8,7 @@
 
 namespace caustica::mitsuba {
 
-using meshio::quoted;
+using meshio::quoteText;
 
 XmlFile::XmlFile(std::string path, std::string text, Defines& defines)
     : path_(std::move(path)), text_(std::move(text)), defines_(defines) {
@@ -31,8 +31,8 @@ void XmlFile::checkAttributes(const pugi::xml_node& node,
                               std::initializer_list<std::string_view> allowed) const {
     for (const pugi::xml_attribute& a : node.attributes()) {
         if (std::find(allowed.begin(), allowed.end(), std::string_view(a.name())) == allowed.end())
-            fail(node, "unexpected attribute '" + std::string(a.name()) + "' in <" + node.name() +
-                           ">");
+            fail(node,
+                 "unexpected attribute '" + std::string(a.name()) + "' in <" + node.name() + ">");
     }
 }
 
@@ -60,7 +60,7 @@ std::string XmlFile::substitute(const pugi::xml_node& node, const std::string& v
             continue;
         }
         if (i + 1 >= value.size() || !isStart(value[i + 1]))
-            fail(node, "'$' not followed by a parameter name in " + quoted(value));
+            fail(node, "'$' not followed by a parameter name in " + quoteText(value));
         size_t j = i + 1;
         while (j < value.size() && isBody(value[j])) ++j;
         std::string name = value.substr(i + 1, j - i - 1);
@@ -79,7 +79,7 @@ double XmlFile::number(const pugi::xml_node& node, std::string_view text,
                        const std::string& what) const {
     double v = 0;
     if (!meshio::parseDouble(text, v))
-        fail(node, "cannot read " + quoted(text) + " as a finite number (" + what + ")");
+        fail(node, "cannot read " + quoteText(text) + " as a finite number (" + what + ")");
     return v;
 }
 
@@ -91,7 +91,7 @@ std::vector<double> XmlFile::numbers(const pugi::xml_node& node, std::string_vie
         std::string expected;
         for (size_t c : counts) expected += (expected.empty() ? "" : " or ") + std::to_string(c);
         fail(node, what + " needs " + expected + " numbers, got " + std::to_string(tok.size()) +
-                       " in " + quoted(text));
+                       " in " + quoteText(text));
     }
     std::vector<double> out;
     for (std::string_view t : tok) out.push_back(number(node, t, what));

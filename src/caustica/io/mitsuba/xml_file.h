@@ -52,7 +52,8 @@ public:
     double number(const pugi::xml_node& node, std::string_view text, const std::string& what) const;
     /// Numbers separated by commas and/or blanks; their count must be one of `counts`.
     std::vector<double> numbers(const pugi::xml_node& node, std::string_view text,
-                                const std::string& what, std::initializer_list<size_t> counts) const;
+                                const std::string& what,
+                                std::initializer_list<size_t> counts) const;
 
 private:
     std::string substitute(const pugi::xml_node& node, const std::string& value) const;

@@ -3,10 +3,9 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
-#include <fstream>
 #include <memory>
-#include <sstream>
 
+#include "caustica/io/mesh/read_file.h"
 #include "caustica/io/mesh/text_parse.h"
 #include "caustica/io/mitsuba/xml_file.h"
 #include "caustica/io/mitsuba/xml_properties.h"
@@ -61,13 +60,20 @@ void upgradeLegacyNames(pugi::xml_node node, int depth = 0) {
     }
 }
 
+/// A path's identity for cycle detection (falls back to the path itself if it cannot be resolved).
+std::string canonicalKey(const fs::path& path) {
+    std::error_code ec;
+    fs::path p = fs::weakly_canonical(path, ec);
+    return ec ? path.lexically_normal().string() : p.string();
+}
+
 class Parser {
 public:
     explicit Parser(Defines& defines) : defines_(defines) {}
 
     SceneDescription run(const std::string& path) {
         desc_.file = path;
-        includeStack_.push_back(std::filesystem::weakly_canonical(path).string());
+        includeStack_.push_back(canonicalKey(path));
         parseFile(path, nullptr, {});
         resolveReferences();
         return std::move(desc_);
@@ -75,14 +81,14 @@ public:
 
 private:
     void parseFile(const std::string& path, const XmlFile* includer, pugi::xml_node includeNode) {
-        std::ifstream in(path, std::ios::binary);
-        if (!in) {
-            if (includer) includer->fail(includeNode, "cannot open included file '" + path + "'");
-            throw Error(path, 0, "cannot open scene file");
+        std::string text;
+        try {
+            text = meshio::readWholeFile(path, "scene file");
+        } catch (const Error& e) {
+            if (includer) includer->fail(includeNode, e.what());
+            throw;
         }
-        std::ostringstream ss;
-        ss << in.rdbuf();
-        auto file = std::make_unique<XmlFile>(path, ss.str(), defines_);
+        auto file = std::make_unique<XmlFile>(path, std::move(text), defines_);
         pugi::xml_document doc;
         pugi::xml_parse_result r = doc.load_buffer(file->text().data(), file->text().size(),
                                                    pugi::parse_default, pugi::encoding_utf8);
@@ -101,8 +107,8 @@ private:
         } else if (includer) {
             parseSceneChild(*file, root);  // an included file holding a single object
         } else {
-            file->fail(root, "the root element must be <scene>, not <" + std::string(root.name()) +
-                                 ">");
+            file->fail(root,
+                       "the root element must be <scene>, not <" + std::string(root.name()) + ">");
         }
     }
 
@@ -112,13 +118,13 @@ private:
         int64_t n[3];
         if (parts.size() != 3 || !meshio::parseInt64(parts[0], n[0]) ||
             !meshio::parseInt64(parts[1], n[1]) || !meshio::parseInt64(parts[2], n[2]))
-            f.fail(root, "cannot read version " + meshio::quoted(v) + " (expected e.g. 3.0.0)");
+            f.fail(root, "cannot read version " + meshio::quoteText(v) + " (expected e.g. 3.0.0)");
         if (n[0] < 2) upgradeLegacyNames(root);
     }
 
     void parseSceneChild(const XmlFile& f, pugi::xml_node node) {
         if (node.type() == pugi::node_pcdata || node.type() == pugi::node_cdata)
-            f.fail(node.parent(), "unexpected text " + meshio::quoted(node.value()));
+            f.fail(node.parent(), "unexpected text " + meshio::quoteText(node.value()));
         if (node.type() != pugi::node_element) return;
         const std::string tag = node.name();
         if (tag == "include") return parseInclude(f, node);
@@ -141,8 +147,10 @@ private:
         fs::path target = f.required(node, "filename");
         if (target.is_relative())
             target = (fs::path(f.path()).parent_path() / target).lexically_normal();
-        if (!fs::exists(target)) f.fail(node, "included file '" + target.string() + "' not found");
-        std::string key = fs::weakly_canonical(target).string();
+        std::error_code ec;
+        if (!fs::exists(target, ec))
+            f.fail(node, "included file '" + target.string() + "' not found");
+        std::string key = canonicalKey(target);
         if (std::find(includeStack_.begin(), includeStack_.end(), key) != includeStack_.end())
             f.fail(node, "include cycle: '" + target.string() + "' includes itself");
         includeStack_.push_back(key);
@@ -154,7 +162,8 @@ private:
         const std::string tag = node.name();
         if (depth_ >= kMaxDepth)
             f.fail(node, "objects nested more than " + std::to_string(kMaxDepth) + " levels deep");
-        if (const char* reason = unsupportedTagReason(tag)) f.fail(node, "<" + tag + ">: " + reason);
+        if (const char* reason = unsupportedTagReason(tag))
+            f.fail(node, "<" + tag + ">: " + reason);
         if (tag == "spectrum" && node.attribute("type"))
             f.fail(node, "spectrum plugins (<spectrum type=...>) are not supported yet");
         if (!isObjectTag(tag)) f.fail(node, "unknown element <" + tag + ">");
@@ -176,7 +185,7 @@ private:
 
     void parseObjectChild(const XmlFile& f, pugi::xml_node node, int parent) {
         if (node.type() == pugi::node_pcdata || node.type() == pugi::node_cdata)
-            f.fail(node.parent(), "unexpected text " + meshio::quoted(node.value()));
+            f.fail(node.parent(), "unexpected text " + meshio::quoteText(node.value()));
         if (node.type() != pugi::node_element) return;
         const std::string tag = node.name();
         if (tag == "ref") {

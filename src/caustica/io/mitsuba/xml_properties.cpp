@@ -9,7 +9,7 @@ namespace caustica::mitsuba {
 
 namespace {
 
-using meshio::quoted;
+using meshio::quoteText;
 
 std::string lower(std::string s) {
     for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
@@ -66,7 +66,8 @@ Transform transformOp(const XmlFile& f, const pugi::xml_node& n) {
         f.checkAttributes(n, {"value", "x", "y", "z", "angle"});
         Vec3f axis = xyzOrValue(f, n, 0, "<rotate> axis");
         Float angle = Float(f.number(n, f.required(n, "angle"), "'angle' of <rotate>"));
-        if (lengthSquared(axis) == 0) f.fail(n, "<rotate> needs a non-zero axis (x, y, z or value)");
+        if (lengthSquared(axis) == 0)
+            f.fail(n, "<rotate> needs a non-zero axis (x, y, z or value)");
         return rotate(axis, angle);
     }
     if (tag == "matrix") {
@@ -100,8 +101,9 @@ Spectrum spectrumValue(const XmlFile& f, const pugi::xml_node& n) {
     std::string value = f.required(n, "value");
     std::vector<std::string_view> tok = meshio::tokenize(value);
     if (tok.size() != 1 || value.find(':') != std::string::npos)
-        f.fail(n, "<spectrum> with wavelength:value pairs is not supported yet; give a single "
-                  "value or use <rgb>");
+        f.fail(n,
+               "<spectrum> with wavelength:value pairs is not supported yet; give a single "
+               "value or use <rgb>");
     return Spectrum(Float(f.number(n, tok[0], "<spectrum> value")));
 }
 
@@ -114,8 +116,8 @@ bool isPropertyTag(std::string_view tag) {
 }
 
 const char* propertyTypeName(PropertyType type) {
-    static const char* kNames[] = {"float", "integer", "boolean", "string",  "point",
-                                   "vector", "rgb",    "spectrum", "transform"};
+    static const char* kNames[] = {"float",  "integer", "boolean",  "string",   "point",
+                                   "vector", "rgb",     "spectrum", "transform"};
     return kNames[int(type)];
 }
 
@@ -156,14 +158,14 @@ Property parseProperty(const XmlFile& f, const pugi::xml_node& n) {
         p.type = PropertyType::Integer;
         std::string v = f.required(n, "value");
         if (!meshio::parseInt64(v, p.integer))
-            f.fail(n, "cannot read " + quoted(v) + " as an integer (" + what + ")");
+            f.fail(n, "cannot read " + quoteText(v) + " as an integer (" + what + ")");
         p.number = double(p.integer);
     } else if (tag == "boolean") {
         f.checkAttributes(n, {"name", "value"});
         p.type = PropertyType::Boolean;
         std::string v = lower(f.required(n, "value"));
         if (v != "true" && v != "false")
-            f.fail(n, what + " must be 'true' or 'false', not " + quoted(v));
+            f.fail(n, what + " must be 'true' or 'false', not " + quoteText(v));
         p.boolean = v == "true";
     } else if (tag == "string") {
         f.checkAttributes(n, {"name", "value"});
@@ -180,8 +182,8 @@ Property parseProperty(const XmlFile& f, const pugi::xml_node& n) {
         f.checkAttributes(n, {"name", "value"});
         p.type = PropertyType::Rgb;
         std::vector<double> v = f.numbers(n, f.required(n, "value"), what, {1, 3});
-        p.color = v.size() == 1 ? Spectrum(Float(v[0]))
-                                : Spectrum(Float(v[0]), Float(v[1]), Float(v[2]));
+        p.color =
+            v.size() == 1 ? Spectrum(Float(v[0])) : Spectrum(Float(v[0]), Float(v[1]), Float(v[2]));
     } else if (tag == "spectrum") {
         p.type = PropertyType::Spectrum;
         p.color = spectrumValue(f, n);

@@ -2,6 +2,7 @@
 // statistics and checkpoints.
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <atomic>
 #include <csignal>
 #include <cstdio>
@@ -42,7 +43,7 @@ struct RenderOptions {
     std::string accel = "embree";
     std::string integrator = "path";
     std::string statsJson;
-    int sppPerPass = 1;
+    int sppPerPass = 0;
     double checkpointEvery = 60;
     bool resume = false;
     bool quiet = false;
@@ -75,8 +76,8 @@ std::function<int()> addRenderCommand(CLI::App& app) {
     cmd->add_option("--time", opt->time, "Time budget in seconds; stops after the pass that reaches it")
         ->check(CLI::PositiveNumber);
     cmd->add_option("--threads", opt->threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 4096));
-    cmd->add_option("--seed", opt->seed, "Seed of the random streams; the image depends only on it, "
-                                         "never on the thread count");
+    cmd->add_option("--seed", opt->seed, "Seed of the random streams (default: the scene sampler's "
+                                         "seed); the image depends only on it, never on the thread count");
     cmd->add_option("--res", opt->res, "Override the film resolution, WIDTHxHEIGHT");
     cmd->add_option("-D,--define", opt->defines, "Set a scene <default> parameter: -D name=value (repeatable)");
     cmd->add_option("--accel", opt->accel, "Ray-tracing backend on the CPU")
@@ -85,14 +86,16 @@ std::function<int()> addRenderCommand(CLI::App& app) {
         ->check(CLI::IsMember({"path"}));
     cmd->add_option("--stats-json", opt->statsJson, "Write the final statistics as JSON to this file");
     cmd->add_option("--spp-per-pass", opt->sppPerPass, "Samples per pixel in one pass (progress and "
-                                                       "checkpoint granularity)")->check(CLI::Range(1, 4096));
+                                                       "checkpoint granularity; default: about 256k samples a pass)")->check(CLI::Range(1, 4096));
     cmd->add_option("--checkpoint-every", opt->checkpointEvery,
                     "Seconds between checkpoints (images + OUTPUT.ckpt); 0 disables")
         ->check(CLI::NonNegativeNumber);
     cmd->add_flag("--resume", opt->resume, "Continue from OUTPUT.ckpt left by an interrupted render");
     cmd->add_flag("-q,--quiet", opt->quiet, "No progress bar");
 
-    return [opt] {
+    CLI::Option* seedOption = cmd->get_option("--seed");
+    return [opt, seedOption] {
+        const bool seedGiven = seedOption->count() > 0;
         std::unique_ptr<tbb::global_control> threadLimit;
         if (opt->threads > 0)
             threadLimit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
@@ -103,6 +106,7 @@ std::function<int()> addRenderCommand(CLI::App& app) {
 
         Scene scene = loadScene(opt->scene, parseDefines(opt->defines));
         if (!opt->res.empty()) applyResolution(scene, opt->res);
+        if (!seedGiven) opt->seed = scene.seed;
         const int sppTarget = opt->spp > 0 ? opt->spp : (opt->time > 0 ? 0 : scene.sampleCount);
 
         Film film(scene.film);
@@ -127,7 +131,8 @@ std::function<int()> addRenderCommand(CLI::App& app) {
         RenderBudget budget;
         budget.samplesPerPixel = sppTarget;
         budget.timeLimit = opt->time;
-        budget.samplesPerPass = opt->sppPerPass;
+        const int pixels = scene.film.width * scene.film.height;
+        budget.samplesPerPass = opt->sppPerPass > 0 ? opt->sppPerPass : std::clamp((1 << 18) / pixels, 1, 16);
         budget.cancel = &gCancel;
         std::signal(SIGINT, onInterrupt);
         std::signal(SIGTERM, onInterrupt);

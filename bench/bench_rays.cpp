@@ -43,8 +43,8 @@ namespace {
 Float valueNoise(Vec3f p) {
     const Float fx = std::floor(p.x), fy = std::floor(p.y), fz = std::floor(p.z);
     auto lattice = [](int x, int y, int z) {
-        const uint64_t h = hashCombine(hashCombine(mix64(uint64_t(uint32_t(x))), uint32_t(y)),
-                                       uint32_t(z));
+        const uint64_t h =
+            hashCombine(hashCombine(mix64(uint64_t(uint32_t(x))), uint32_t(y)), uint32_t(z));
         return 2 * uniformFloat(h) - 1;
     };
     auto fade = [](Float t) { return t * t * (3 - 2 * t); };
@@ -59,7 +59,8 @@ Float valueNoise(Vec3f p) {
 
 Float fbm(Vec3f p) {
     Float sum = 0, amp = 0.5f;
-    for (int octave = 0; octave < 5; ++octave, p = p * 2.03f, amp *= 0.5f) sum += amp * valueNoise(p);
+    for (int octave = 0; octave < 5; ++octave, p = p * 2.03f, amp *= 0.5f)
+        sum += amp * valueNoise(p);
     return sum;
 }
 
@@ -68,8 +69,9 @@ Float fbm(Vec3f p) {
 Scene makeProceduralScene(int levels) {
     Scene scene;
     const Float g = (1 + std::sqrt(5.0f)) / 2;
-    std::vector<Vec3f> v = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
-                            {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
+    std::vector<Vec3f> v = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0},
+                            {0, -1, g}, {0, 1, g}, {0, -1, -g}, {0, 1, -g},
+                            {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
     std::vector<Vec3u> f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
                             {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
                             {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
@@ -87,7 +89,8 @@ Scene makeProceduralScene(int levels) {
         std::vector<Vec3u> next;
         next.reserve(f.size() * 4);
         for (const Vec3u& t : f) {
-            const uint32_t ab = midpoint(t.x, t.y), bc = midpoint(t.y, t.z), ca = midpoint(t.z, t.x);
+            const uint32_t ab = midpoint(t.x, t.y), bc = midpoint(t.y, t.z),
+                           ca = midpoint(t.z, t.x);
             next.push_back({t.x, ab, ca});
             next.push_back({t.y, bc, ab});
             next.push_back({t.z, ca, bc});
@@ -134,7 +137,8 @@ struct BenchScene {
 Vec3f shadowTarget(const Scene& scene) {
     Bounds3f emitters;
     for (size_t i = 0; i < scene.triangles.size(); ++i)
-        if (scene.shapes[scene.triangleShape[i]].light >= 0) emitters.extend(scene.primitiveBounds(uint32_t(i)));
+        if (scene.shapes[scene.triangleShape[i]].light >= 0)
+            emitters.extend(scene.primitiveBounds(uint32_t(i)));
     if (!emitters.empty()) return emitters.center();
     const Bounds3f b = scene.bounds();
     return Vec3f(b.center().x, b.hi.y + b.diagonal().y, b.center().z);
@@ -193,12 +197,20 @@ void registerScene(const BenchScene& b) {
     for (const auto& [type, rays] : sets) {
         const bool anyHit = std::string(type) == "shadow";
         const std::string prefix = "rays/" + b.name + "/" + type + "/";
-        benchmark::RegisterBenchmark((prefix + "bvh").c_str(), [&b, rays, anyHit](auto& st) {
-            traceRays(st, BvhIntersector{b.bvh.view(), b.scene.view()}, *rays, anyHit);
-        })->Unit(benchmark::kMillisecond)->MinTime(1.0)->ComputeStatistics("max", maxOf);
-        benchmark::RegisterBenchmark((prefix + "embree").c_str(), [&b, rays, anyHit](auto& st) {
-            traceRays(st, b.embree->intersector(), *rays, anyHit);
-        })->Unit(benchmark::kMillisecond)->MinTime(1.0)->ComputeStatistics("max", maxOf);
+        benchmark::RegisterBenchmark(
+            (prefix + "bvh").c_str(),
+            [&b, rays, anyHit](auto& st) {
+                traceRays(st, BvhIntersector{b.bvh.view(), b.scene.view()}, *rays, anyHit);
+            })
+            ->Unit(benchmark::kMillisecond)
+            ->MinTime(1.0)
+            ->ComputeStatistics("max", maxOf);
+        benchmark::RegisterBenchmark(
+            (prefix + "embree").c_str(),
+            [&b, rays, anyHit](auto& st) { traceRays(st, b.embree->intersector(), *rays, anyHit); })
+            ->Unit(benchmark::kMillisecond)
+            ->MinTime(1.0)
+            ->ComputeStatistics("max", maxOf);
     }
 }
 
@@ -210,14 +222,14 @@ void addScene(std::string name, Scene scene) {
     b->embree = std::make_unique<EmbreeScene>(b->scene);
     makeRays(*b);
     const BvhStats& s = b->bvh.stats;
-    std::printf("%s: %u triangles, %zu spheres; BVH %u nodes, depth %u, %.2f prims/leaf, SAH %.1f, "
-                "%.1f MiB, built in %.0f ms; Embree built in %.0f ms; rays: %zu camera, %zu bounce, "
-                "%zu shadow\n",
-                b->name.c_str(), uint32_t(b->scene.triangles.size()), b->scene.spheres.size(),
-                s.nodeCount, s.maxDepth, s.averageLeafSize, s.sahCost,
-                double(s.memoryBytes) / (1 << 20), s.buildMilliseconds,
-                b->embree->buildMilliseconds(), b->camera.size(), b->bounce.size(),
-                b->shadow.size());
+    std::printf(
+        "%s: %u triangles, %zu spheres; BVH %u nodes, depth %u, %.2f prims/leaf, SAH %.1f, "
+        "%.1f MiB, built in %.0f ms; Embree built in %.0f ms; rays: %zu camera, %zu bounce, "
+        "%zu shadow\n",
+        b->name.c_str(), uint32_t(b->scene.triangles.size()), b->scene.spheres.size(), s.nodeCount,
+        s.maxDepth, s.averageLeafSize, s.sahCost, double(s.memoryBytes) / (1 << 20),
+        s.buildMilliseconds, b->embree->buildMilliseconds(), b->camera.size(), b->bounce.size(),
+        b->shadow.size());
     gScenes.push_back(std::move(b));
 }
 
@@ -233,9 +245,9 @@ public:
             if (run.error_occurred || it == run.counters.end()) continue;
             const std::string& name = run.run_name.function_name;
             const int rank = run.run_type != Run::RT_Aggregate ? 1
-                             : run.aggregate_name == "max"    ? 3
-                             : run.aggregate_name == "median" ? 2
-                                                              : 0;
+                             : run.aggregate_name == "max"     ? 3
+                             : run.aggregate_name == "median"  ? 2
+                                                               : 0;
             if (rank == 0) continue;
             const double value = it->second.value;
             auto& [bestRank, rate] = rates_[name];
@@ -268,7 +280,8 @@ int main(int argc, char** argv) {
     const std::string path = std::string(CAUSTICA_SOURCE_DIR) + "/scenes/cornell-water/scene.xml";
     try {
         std::vector<std::string> warnings;
-        addScene("cornell-water", loadScene(path, {{"width", "640"}, {"height", "640"}}, &warnings));
+        addScene("cornell-water",
+                 loadScene(path, {{"width", "640"}, {"height", "640"}}, &warnings));
     } catch (const std::exception& e) {
         std::printf("cornell-water skipped: %s\n", e.what());
     }
@@ -285,7 +298,8 @@ int main(int argc, char** argv) {
     for (const auto& b : gScenes)
         for (const char* type : {"camera", "bounce", "shadow"}) {
             const std::string prefix = "rays/" + b->name + "/" + type + "/";
-            const double bvh = reporter.rate(prefix + "bvh"), emb = reporter.rate(prefix + "embree");
+            const double bvh = reporter.rate(prefix + "bvh"),
+                         emb = reporter.rate(prefix + "embree");
             if (bvh < 0 || emb < 0) continue;
             std::printf("%-16s %-8s %13.2f %16.2f %8.2f\n", b->name.c_str(), type, bvh * 1e-6,
                         emb * 1e-6, bvh / emb);

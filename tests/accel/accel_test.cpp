@@ -92,8 +92,8 @@ void checkSpawnedRays(const Scene& scene, AccelKind kind, uint32_t numRays, uint
                 if (next.primId == hit.primId) {
                     // Only a sphere can be hit again legitimately: on its far side, going inward.
                     ASSERT_TRUE(isSphere) << "triangle " << hit.primId << " re-hit at t=" << next.t;
-                    ASSERT_GT(next.t * length(dir), 0.1f * view.spheres[hit.primId -
-                                                              view.numTriangles()].radius);
+                    ASSERT_GT(next.t * length(dir),
+                              0.1f * view.spheres[hit.primId - view.numTriangles()].radius);
                     continue;
                 }
                 // Shadow ray between the two hit points: the segment was free, so not occluded

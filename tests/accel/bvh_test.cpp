@@ -1,5 +1,6 @@
 // The own BVH against the brute-force reference, plus build determinism and statistics.
 #include <algorithm>
+#include <cstring>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -55,11 +56,18 @@ TEST_P(BvhVsBruteForce, PrecomputedPrimitives) {
     expectMatchesBruteForce(test::makeRandomScene(GetParam().scene), {}, 3000, 17);
 }
 
+TEST_P(BvhVsBruteForce, BinaryNodes) {
+    BvhBuildOptions options;
+    options.width = 2;
+    expectMatchesBruteForce(test::makeRandomScene(GetParam().scene), options, 1500, 23);
+}
+
 TEST_P(BvhVsBruteForce, SceneArraysAndOtherSettings) {
     BvhBuildOptions options;
     options.precomputePrimitives = false;
     options.binCount = 8;
     options.maxLeafSize = 2;
+    options.width = 3;
     expectMatchesBruteForce(test::makeRandomScene(GetParam().scene), options, 2000, 29);
 }
 
@@ -122,13 +130,8 @@ TEST(Bvh, EmptySceneHasNoNodesAndNoHits) {
 
 bool sameTree(const Bvh& a, const Bvh& b) {
     if (a.nodes.size() != b.nodes.size() || a.primIndices != b.primIndices) return false;
-    for (size_t i = 0; i < a.nodes.size(); ++i) {
-        const BvhNode &x = a.nodes[i], &y = b.nodes[i];
-        if (!(x.lo == y.lo) || !(x.hi == y.hi) || x.offset != y.offset ||
-            x.countAxis != y.countAxis)
-            return false;
-    }
-    return true;
+    // Bitwise: empty slots hold NaN boxes, which never compare equal as floats.
+    return std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(BvhNode)) == 0;
 }
 
 TEST(Bvh, BuildIsDeterministicForAnyThreadCount) {
@@ -145,9 +148,39 @@ TEST(Bvh, BuildIsDeterministicForAnyThreadCount) {
     EXPECT_TRUE(sameTree(first, serial));
 }
 
-bool contains(const BvhNode& outer, Vec3f lo, Vec3f hi) {
-    return outer.lo.x <= lo.x && outer.lo.y <= lo.y && outer.lo.z <= lo.z && hi.x <= outer.hi.x &&
-           hi.y <= outer.hi.y && hi.z <= outer.hi.z;
+bool contains(const Bounds3f& outer, const Bounds3f& inner) {
+    return outer.lo.x <= inner.lo.x && outer.lo.y <= inner.lo.y && outer.lo.z <= inner.lo.z &&
+           inner.hi.x <= outer.hi.x && inner.hi.y <= outer.hi.y && inner.hi.z <= outer.hi.z;
+}
+
+/// Walks the tree from node `index` (whose box is `box`), checking structure and counting.
+void checkSubtree(const Bvh& bvh, const Scene& scene, uint32_t index, const Bounds3f& box,
+                  uint32_t& leaves, uint32_t& prims, uint32_t& nodes) {
+    ++nodes;
+    const BvhNode& node = bvh.nodes[index];
+    int used = 0;
+    for (int k = 0; k < BvhNode::kWidth; ++k) {
+        if (node.isEmpty(k)) {
+            EXPECT_EQ(node.count[k], 0u);
+            continue;
+        }
+        ++used;
+        const Bounds3f child = node.bounds(k);
+        ASSERT_TRUE(contains(box, child));
+        if (node.isLeaf(k)) {
+            ++leaves;
+            prims += node.count[k];
+            for (uint32_t i = node.offset[k]; i < node.offset[k] + node.count[k]; ++i) {
+                ASSERT_LT(i, bvh.primIndices.size());
+                ASSERT_TRUE(contains(child, scene.primitiveBounds(bvh.primIndices[i])));
+            }
+        } else {
+            ASSERT_GT(node.offset[k], index);  // depth-first: children after their parent
+            ASSERT_LT(node.offset[k], bvh.nodes.size());
+            checkSubtree(bvh, scene, node.offset[k], child, leaves, prims, nodes);
+        }
+    }
+    EXPECT_GE(used, index == 0 ? 1 : 2);
 }
 
 TEST(Bvh, StatisticsAndStructureAreConsistent) {
@@ -156,43 +189,54 @@ TEST(Bvh, StatisticsAndStructureAreConsistent) {
     const Bvh bvh = buildBvh(scene, options);
     const BvhStats& s = bvh.stats;
     const uint32_t n = scene.numPrimitives();
-    EXPECT_EQ(s.nodeCount, 2 * s.leafCount - 1);  // a full binary tree
-    EXPECT_EQ(bvh.nodes.size(), s.nodeCount + 1);  // plus the padding node 1
-    EXPECT_EQ(reinterpret_cast<uintptr_t>(bvh.nodes.data()) % 64, 0u);  // pairs fill cache lines
+    EXPECT_EQ(s.nodeCount, bvh.nodes.size());
+    EXPECT_EQ(s.width, 4u);
+    EXPECT_LE(s.maxStack, uint32_t(kBvhStackSize));
+    EXPECT_GT(s.nodeCount, s.leafCount / 4);
+    EXPECT_LT(s.nodeCount, s.leafCount);  // most nodes have more than two children
+    EXPECT_EQ(reinterpret_cast<uintptr_t>(bvh.nodes.data()) % 128, 0u);
     EXPECT_LE(s.maxDepth, uint32_t(kBvhMaxDepth));
-    EXPECT_GT(s.maxDepth, 5u);
+    EXPECT_GT(s.maxDepth, 3u);
     EXPECT_NEAR(s.averageLeafSize, double(n) / s.leafCount, 1e-9);
     EXPECT_LE(s.averageLeafSize, options.maxLeafSize);
     EXPECT_GT(s.sahCost, 1.0);
     EXPECT_LT(s.sahCost, double(n));  // far better than one big leaf
-    EXPECT_EQ(s.memoryBytes, bvh.nodes.size() * sizeof(BvhNode) + n * sizeof(uint32_t) +
-                                 n * sizeof(BvhPrimitive));
+    EXPECT_EQ(s.memoryBytes,
+              bvh.nodes.size() * sizeof(BvhNode) + n * sizeof(uint32_t) + n * sizeof(BvhPrimitive));
     EXPECT_GE(s.buildMilliseconds, 0.0);
 
     // Every primitive exactly once; children inside parents; leaves bound their primitives.
     std::vector<uint32_t> ids = bvh.primIndices;
     std::sort(ids.begin(), ids.end());
     for (uint32_t i = 0; i < n; ++i) ASSERT_EQ(ids[i], i);
-    uint32_t leafPrims = 0;
-    for (uint32_t i = 0; i < bvh.nodes.size(); ++i) {
-        if (i == 1) continue;  // padding
-        const BvhNode& node = bvh.nodes[i];
-        if (node.isLeaf()) {
-            leafPrims += node.primCount();
-            for (uint32_t k = node.offset; k < node.offset + node.primCount(); ++k) {
-                const Bounds3f b = scene.primitiveBounds(bvh.primIndices[k]);
-                ASSERT_TRUE(contains(node, b.lo, b.hi));
-            }
-        } else {
-            ASSERT_LT(i, node.offset);  // depth-first: children after their parent
-            ASSERT_EQ(node.offset % 2, 0u);
-            ASSERT_LT(node.offset + 1, bvh.nodes.size());
-            const BvhNode &a = bvh.nodes[node.offset], &b = bvh.nodes[node.offset + 1];
-            ASSERT_TRUE(contains(node, a.lo, a.hi));
-            ASSERT_TRUE(contains(node, b.lo, b.hi));
-        }
+    uint32_t leaves = 0, prims = 0, nodes = 0;
+    checkSubtree(bvh, scene, 0, scene.bounds(), leaves, prims, nodes);
+    EXPECT_EQ(leaves, s.leafCount);
+    EXPECT_EQ(prims, n);
+    EXPECT_EQ(nodes, s.nodeCount);  // every node reachable once
+    for (uint32_t i = 0; i < n; ++i) EXPECT_EQ(bvh.prims[i].primId, bvh.primIndices[i]);
+}
+
+TEST(Bvh, SinglePrimitiveRootIsALeafSlot) {
+    const Scene scene = test::makeRandomScene(sceneOf(0, 1, 3));
+    const Bvh bvh = buildBvh(scene);
+    ASSERT_EQ(bvh.nodes.size(), 1u);
+    EXPECT_TRUE(bvh.nodes[0].isLeaf(0));
+    for (int k = 1; k < BvhNode::kWidth; ++k) EXPECT_TRUE(bvh.nodes[0].isEmpty(k));
+    EXPECT_EQ(bvh.stats.leafCount, 1u);
+}
+
+TEST(Bvh, BinaryWidthGivesTwoChildrenPerNode) {
+    const Scene scene = test::makeRandomScene(sceneOf(3000, 0, 32));
+    BvhBuildOptions options;
+    options.width = 2;
+    const Bvh bvh = buildBvh(scene, options);
+    EXPECT_EQ(bvh.stats.width, 2u);
+    EXPECT_EQ(bvh.stats.nodeCount, bvh.stats.leafCount - 1);  // a full binary tree
+    for (const BvhNode& node : bvh.nodes) {
+        EXPECT_FALSE(node.isEmpty(1));
+        EXPECT_TRUE(node.isEmpty(2) && node.isEmpty(3));
     }
-    EXPECT_EQ(leafPrims, n);
 }
 
 }  // namespace

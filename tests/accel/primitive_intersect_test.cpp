@@ -86,11 +86,11 @@ TEST(TriangleIntersect, NonUnitDirectionScalesT) {
 TEST(TriangleIntersect, ZeroAreaTrianglesAreNeverHit) {
     Float t, b1, b2;
     const Vec3f p(0.5f, 0.5f, 0);
-    EXPECT_FALSE(intersectTriangle({0.5f, 0.5f, 1}, {0, 0, -1}, kInfinity, p, Vec3f(), Vec3f(), t,
-                                   b1, b2));
+    EXPECT_FALSE(
+        intersectTriangle({0.5f, 0.5f, 1}, {0, 0, -1}, kInfinity, p, Vec3f(), Vec3f(), t, b1, b2));
     EXPECT_FALSE(intersectTriangle({0, 0, 1}, {0, 0, -1}, kInfinity, kP0, kE1, kE1, t, b1, b2));
-    EXPECT_FALSE(intersectTriangle({0.5f, 0, 1}, {0, 0, -1}, kInfinity, kP0, kE1, Vec3f(), t, b1,
-                                   b2));
+    EXPECT_FALSE(
+        intersectTriangle({0.5f, 0, 1}, {0, 0, -1}, kInfinity, kP0, kE1, Vec3f(), t, b1, b2));
 }
 
 TEST(SphereIntersect, HitFromOutsideGivesNearRoot) {
@@ -117,7 +117,8 @@ TEST(SphereIntersect, MissesBehindAndBeyondTMax) {
     EXPECT_FALSE(intersectSphere({0, 1.0001f, -5}, {0, 0, 1}, kInfinity, {0, 0, 0}, 1, t));
     EXPECT_FALSE(intersectSphere({0, 0, -5}, {0, 0, 0}, kInfinity, {0, 0, 0}, 1, t));  // d = 0
     EXPECT_EQ(t, -7);
-    EXPECT_TRUE(intersectSphere({0, 0, -5}, {0, 0, 1}, std::nextafter(4.0f, 5.0f), {0, 0, 0}, 1, t));
+    EXPECT_TRUE(
+        intersectSphere({0, 0, -5}, {0, 0, 1}, std::nextafter(4.0f, 5.0f), {0, 0, 0}, 1, t));
 }
 
 TEST(SphereIntersect, PreciseForSmallFarSpheres) {

@@ -37,10 +37,10 @@ private:
 struct RandomSceneOptions {
     uint32_t numTriangles = 100;
     uint32_t numSpheres = 0;
-    Vec3f center{0, 0, 0};           // the soup fills center +- extent / 2
+    Vec3f center{0, 0, 0};  // the soup fills center +- extent / 2
     Float extent = 10;
-    Float primitiveSize = 1;         // triangle vertex spread and largest sphere radius
-    Float degenerateFraction = 0;    // share of zero-area / collinear triangles
+    Float primitiveSize = 1;       // triangle vertex spread and largest sphere radius
+    Float degenerateFraction = 0;  // share of zero-area / collinear triangles
     uint64_t seed = 1;
 };
 
@@ -85,10 +85,10 @@ inline Scene makeRandomScene(const RandomSceneOptions& opt) {
         Vec3f d = c + rng.inBox(Vec3f(-s), Vec3f(s));
         if (rng.uniform() < opt.degenerateFraction) {
             switch (rng.index(4)) {
-            case 0: b = a; break;                      // repeated vertex
-            case 1: b = d = a; break;                  // a point
-            case 2: d = a + (b - a) * 0.5f; break;     // (nearly) collinear
-            default: d = b; break;                     // repeated vertex
+            case 0: b = a; break;                   // repeated vertex
+            case 1: b = d = a; break;               // a point
+            case 2: d = a + (b - a) * 0.5f; break;  // (nearly) collinear
+            default: d = b; break;                  // repeated vertex
             }
         }
         addTriangle(scene, mesh, a, b, d);
@@ -108,8 +108,8 @@ inline Scene makeTerrain(uint32_t n, Float halfSize, Vec3f center, Float amplitu
             const Float u = Float(i) / Float(n), v = Float(j) / Float(n);
             const Float h = amplitude * std::sin(11 * u + 2) * std::cos(7 * v - 1) *
                             std::sin(23 * u * v + 0.5f);
-            scene.positions.push_back(center + Vec3f((2 * u - 1) * halfSize, h,
-                                                     (2 * v - 1) * halfSize));
+            scene.positions.push_back(center +
+                                      Vec3f((2 * u - 1) * halfSize, h, (2 * v - 1) * halfSize));
         }
     for (uint32_t j = 0; j < n; ++j)
         for (uint32_t i = 0; i < n; ++i) {
@@ -157,8 +157,8 @@ inline std::vector<Ray> makeRandomRays(const Scene& scene, uint32_t count, uint6
         } else {
             const Vec3f target = pointOnPrimitive(scene, rng.index(numPrims), rng);
             r.d = target - r.o;
-            if (kind == 2) r.tMax = 1 - 1e-4f;                     // shadow ray towards target
-            if (kind == 3) r.tMax = rng.uniform(0.0f, 1.5f);       // arbitrary cut-off
+            if (kind == 2) r.tMax = 1 - 1e-4f;                // shadow ray towards target
+            if (kind == 3) r.tMax = rng.uniform(0.0f, 1.5f);  // arbitrary cut-off
         }
         rays.push_back(r);
     }
@@ -168,7 +168,8 @@ inline std::vector<Ray> makeRandomRays(const Scene& scene, uint32_t count, uint6
 /// The reference: every primitive tested, closest kept.
 inline bool bruteForceIntersect(const SceneView& scene, const Ray& ray, Hit& hit) {
     Hit best;
-    for (uint32_t id = 0; id < scene.numPrimitives(); ++id) intersectPrimitive(scene, id, ray, best);
+    for (uint32_t id = 0; id < scene.numPrimitives(); ++id)
+        intersectPrimitive(scene, id, ray, best);
     if (!best.valid()) return false;
     hit = best;
     return true;

@@ -1,5 +1,5 @@
-// bvh.h — the own bounding volume hierarchy: flat node layout shared by CPU and GPU traversal, and
-// the binned-SAH builder that runs on the host (bvh_build.cpp).
+// bvh.h — the own bounding volume hierarchy: flat 4-wide node layout shared by CPU and GPU
+// traversal, and the binned-SAH builder that runs on the host (bvh_build.cpp).
 #pragma once
 
 #include <cstddef>
@@ -13,29 +13,40 @@
 
 namespace caustica {
 
-/// Deepest leaf the builder creates (root = depth 0). Traversal stacks hold at most one entry per
-/// level, so kBvhStackSize > kBvhMaxDepth guarantees they never overflow.
+/// Deepest level of the binary SAH tree the builder creates (root = depth 0); deeper subtrees
+/// become leaves.
 inline constexpr int kBvhMaxDepth = 62;
+/// Entries of the traversal stack. The builder guarantees that no traversal needs more (see
+/// BvhBuildOptions::width).
 inline constexpr int kBvhStackSize = 64;
 
-/// One BVH node, 32 bytes. Siblings are stored side by side, so the two children of an interior
-/// node fill one 64-byte cache line and traversal tests both boxes with a single line fetched:
-///   nodes[0]            the root (nodes[1] is unused padding that aligns the pairs)
-///   nodes[offset + 0/1] the children of an interior node; pairs are laid out in depth-first order
-///                       (a pair, then the subtree of its first node, then that of its second)
-/// A leaf's primitives are primIndices[offset, offset + count).
-struct alignas(32) BvhNode {
-    Vec3f lo;
-    uint32_t offset = 0;     // interior: index of the first child (even); leaf: first primitive
-    Vec3f hi;
-    uint32_t countAxis = 0;  // bits 0-29: primitive count (0 = interior), bits 30-31: split axis
+/// One node of the 4-wide BVH: the boxes and links of up to four children, 128 bytes (two cache
+/// lines, fetched together by the adjacent-line prefetcher). Boxes are stored axis by axis (SoA),
+/// so the four slab tests are plain loops that the compiler vectorises on the CPU, while the GPU
+/// runs them as scalar code. Nodes are in depth-first order, nodes[0] is the root.
+///
+/// Child slot k is
+///   a leaf          count[k] > 0: primitives primIndices[offset[k], offset[k] + count[k])
+///   an inner node   count[k] = 0: its node is nodes[offset[k]]
+///   empty           count[k] = 0 and a NaN box, which no ray hits (isEmpty)
+///
+/// The binary SAH tree is collapsed into this layout by pulling up grandchildren, largest surface
+/// area first (Wald, Benthin and Boulos, "Getting Rid of Packets: Efficient SIMD Single-Ray
+/// Traversal using Multi-branching BVHs", IEEE RT 2008).
+struct alignas(64) BvhNode {
+    static constexpr int kWidth = 4;
+    float lo[3][kWidth];  // lo[axis][child]
+    float hi[3][kWidth];
+    uint32_t offset[kWidth];  // leaf: first primitive; inner node: node index
+    uint32_t count[kWidth];   // leaf: primitive count (> 0); inner node or empty slot: 0
 
-    static constexpr uint32_t kCountMask = (1u << 30) - 1;
-    CA_HD bool isLeaf() const { return (countAxis & kCountMask) != 0; }
-    CA_HD uint32_t primCount() const { return countAxis & kCountMask; }
-    CA_HD int axis() const { return int(countAxis >> 30); }
+    CA_HD bool isEmpty(int k) const { return !(lo[0][k] <= hi[0][k]); }
+    CA_HD bool isLeaf(int k) const { return count[k] > 0; }
+    CA_HD Bounds3f bounds(int k) const {
+        return Bounds3f{Vec3f(lo[0][k], lo[1][k], lo[2][k]), Vec3f(hi[0][k], hi[1][k], hi[2][k])};
+    }
 };
-static_assert(sizeof(BvhNode) == 32, "BvhNode must stay 32 bytes");
+static_assert(sizeof(BvhNode) == 128, "BvhNode must stay 128 bytes");
 
 /// Primitive data in leaf order, precomputed for traversal so that a leaf test reads one contiguous
 /// 40-byte record instead of an index and three scattered vertices. Triangle: p0 = vertex 0,
@@ -51,30 +62,38 @@ struct BvhPrimitive {
 /// in which case leaves read the scene's triangles and spheres through primIndices.
 struct BvhView {
     Span<const BvhNode> nodes;
-    Span<const uint32_t> primIndices;   // leaf order -> primitive id (triangles first, then spheres)
-    Span<const BvhPrimitive> prims;     // leaf order, parallel to primIndices; optional
+    Span<const uint32_t> primIndices;  // leaf order -> primitive id (triangles first, then spheres)
+    Span<const BvhPrimitive> prims;    // leaf order, parallel to primIndices; optional
 };
 
 /// Builder settings. Costs are the SAH constants of MacDonald and Booth, "Heuristics for Ray
-/// Tracing Using Space Subdivision" (1990), relative to one primitive test.
+/// Tracing Using Space Subdivision" (1990), relative to one primitive test; they steer the binary
+/// tree that is then collapsed to `width` children per node.
 struct BvhBuildOptions {
     int binCount = 32;                 // SAH bins per axis (Wald 2007), 2..256
     int maxLeafSize = 8;               // larger nodes are always split
-    float traversalCost = 1.0f;        // cost of one node visit (two child box tests)
+    float traversalCost = 1.0f;        // cost of one binary node visit (two child box tests)
     float intersectionCost = 1.0f;     // cost of one primitive test
+    int width = 4;                     // children per node, 2..4. With 4, a tree whose traversal
+                                       // could overflow the stack is rebuilt with 2 (never seen)
     bool precomputePrimitives = true;  // fill Bvh::prims (see BvhPrimitive)
 };
 
 /// Figures for `caustica info` and the tests.
 struct BvhStats {
-    uint32_t nodeCount = 0, leafCount = 0, maxDepth = 0;  // nodeCount excludes the padding node
+    uint32_t nodeCount = 0;  // 4-wide nodes
+    uint32_t leafCount = 0;
+    uint32_t maxDepth = 0;       // nodes on the longest root-to-leaf path
+    uint32_t width = 0;          // children per node used (see BvhBuildOptions::width)
+    uint32_t maxStack = 0;       // bound on the traversal stack entries this tree can need
     double averageLeafSize = 0;  // primitives per leaf
-    double sahCost = 0;          // expected cost of a random ray hitting the root box
+    double sahCost = 0;          // expected cost of a random ray hitting the root box: node
+                                 // visits * traversalCost + primitive tests * intersectionCost
     size_t memoryBytes = 0;      // nodes + primIndices + prims
     double buildMilliseconds = 0;
 };
 
-/// std::allocator with a stronger alignment: node pairs start on 64-byte cache-line boundaries.
+/// std::allocator with a stronger alignment: nodes start on 128-byte boundaries (cache-line pairs).
 template <class T, size_t Alignment>
 struct AlignedAllocator {
     using value_type = T;
@@ -90,12 +109,14 @@ struct AlignedAllocator {
     }
     void deallocate(T* p, size_t) { ::operator delete(p, std::align_val_t(Alignment)); }
     template <class U>
-    bool operator==(const AlignedAllocator<U, Alignment>&) const { return true; }
+    bool operator==(const AlignedAllocator<U, Alignment>&) const {
+        return true;
+    }
 };
 
 /// A built BVH: host arrays plus its statistics.
 struct Bvh {
-    std::vector<BvhNode, AlignedAllocator<BvhNode, 64>> nodes;
+    std::vector<BvhNode, AlignedAllocator<BvhNode, 128>> nodes;
     std::vector<uint32_t> primIndices;
     std::vector<BvhPrimitive> prims;
     BvhStats stats;

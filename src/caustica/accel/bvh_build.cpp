@@ -2,11 +2,12 @@
 //
 // Top-down: each node bins its primitives' centroids on all three axes, evaluates the surface area
 // heuristic at every bin boundary and partitions in place (Wald, IEEE RT 2007). Large subtrees are
-// built as parallel TBB tasks; every decision depends only on the primitives of the subtree, and the
-// tree is flattened afterwards in one depth-first pass (sibling pairs, see BvhNode), so the result
-// does not depend on how tasks were scheduled.
+// built as parallel TBB tasks; every decision depends only on the primitives of the subtree, and
+// the binary tree is collapsed afterwards into 4-wide nodes (see BvhNode) in one depth-first pass,
+// so the result does not depend on how tasks were scheduled.
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <memory>
 
 #include <tbb/parallel_for.h>
@@ -44,7 +45,7 @@ class Builder {
 public:
     Builder(const BvhBuildOptions& options, std::vector<PrimRef>& refs)
         : refs_(refs), binCount_(std::clamp(options.binCount, 2, kMaxBins)),
-          maxLeafSize_(std::clamp(options.maxLeafSize, 1, int(BvhNode::kCountMask))),
+          maxLeafSize_(std::clamp(options.maxLeafSize, 1, 1 << 24)),
           traversalCost_(options.traversalCost), intersectionCost_(options.intersectionCost) {}
 
     std::unique_ptr<BuildNode> build(uint32_t begin, uint32_t end, int depth) const {
@@ -144,49 +145,93 @@ private:
     float traversalCost_, intersectionCost_;
 };
 
-/// Flattening into sibling pairs (see BvhNode): a pair is appended, then the subtree below its
-/// first node, then the subtree below its second, recursively.
-class Flattener {
+/// Collapses the binary tree into `width`-wide nodes (see BvhNode) in depth-first order and
+/// gathers the statistics.
+class Collapser {
 public:
-    Flattener(Bvh& bvh, const BvhBuildOptions& options, float rootArea)
-        : bvh_(bvh), options_(options), invRootArea_(rootArea > 0 ? 1.0 / rootArea : 0.0) {}
+    Collapser(Bvh& bvh, const BvhBuildOptions& options, int width, float rootArea)
+        : bvh_(bvh), options_(options), width_(width),
+          invRootArea_(rootArea > 0 ? 1.0 / rootArea : 0.0) {}
 
+    /// Emits the node whose children are those of `root` (or `root` itself if it is a leaf).
     void emitRoot(const BuildNode& root) {
-        bvh_.nodes.emplace_back();
-        if (root.count == 0) bvh_.nodes.emplace_back();  // padding: pairs start at even indices
-        emit(root, 0, 0);
+        const BuildNode* only[1] = {&root};
+        if (root.count > 0) {
+            bvh_.stats.sahCost += options_.traversalCost;
+            emit(only, 1, 1);
+        } else {
+            emitChildrenOf(root, 1);
+        }
     }
 
 private:
-    /// Fills node `index` (already allocated) from `b` and emits its subtree.
-    void emit(const BuildNode& b, uint32_t index, uint32_t depth) {
+    /// Emits the node holding the children of binary node `b`, after pulling up grandchildren of
+    /// the largest inner children until `width` slots are used. Returns the node's index.
+    uint32_t emitChildrenOf(const BuildNode& b, uint32_t depth) {
+        const BuildNode* children[BvhNode::kWidth] = {b.child[0].get(), b.child[1].get()};
+        int n = 2;
+        while (n < width_) {
+            int open = -1;
+            float openArea = -1;
+            for (int k = 0; k < n; ++k) {
+                const float area = children[k]->bounds.surfaceArea();
+                if (children[k]->count == 0 && area > openArea) {
+                    open = k;
+                    openArea = area;
+                }
+            }
+            if (open < 0) break;
+            const BuildNode* opened = children[open];
+            children[open] = opened->child[0].get();
+            children[n++] = opened->child[1].get();
+        }
+        bvh_.stats.sahCost +=
+            double(b.bounds.surfaceArea()) * invRootArea_ * options_.traversalCost;
+        return emit(children, n, depth);
+    }
+
+    uint32_t emit(const BuildNode* const* children, int n, uint32_t depth) {
         BvhStats& s = bvh_.stats;
         ++s.nodeCount;
         s.maxDepth = std::max(s.maxDepth, depth);
-        const double relArea = double(b.bounds.surfaceArea()) * invRootArea_;
-        BvhNode& node = bvh_.nodes[index];
-        node.lo = b.bounds.lo;
-        node.hi = b.bounds.hi;
-        if (b.count > 0) {
-            node.offset = b.begin;
-            node.countAxis = b.count;
-            ++s.leafCount;
-            s.sahCost += relArea * options_.intersectionCost * b.count;
-            return;
-        }
-        s.sahCost += relArea * options_.traversalCost;
-        const uint32_t pair = uint32_t(bvh_.nodes.size());
-        node.offset = pair;
-        node.countAxis = uint32_t(b.axis) << 30;
-        bvh_.nodes.emplace_back();  // invalidates `node`
+        const uint32_t index = uint32_t(bvh_.nodes.size());
         bvh_.nodes.emplace_back();
-        emit(*b.child[0], pair, depth + 1);
-        emit(*b.child[1], pair + 1, depth + 1);
+        BvhNode node;
+        const float nan = std::numeric_limits<float>::quiet_NaN();
+        for (int k = 0; k < BvhNode::kWidth; ++k) {
+            const Bounds3f b = k < n ? children[k]->bounds : Bounds3f();
+            for (int axis = 0; axis < 3; ++axis) {
+                node.lo[axis][k] = k < n ? b.lo[axis] : nan;  // empty slot: never hit
+                node.hi[axis][k] = k < n ? b.hi[axis] : nan;
+            }
+            node.offset[k] = 0;
+            node.count[k] = 0;
+            if (k < n && children[k]->count > 0) {
+                node.offset[k] = children[k]->begin;
+                node.count[k] = children[k]->count;
+                ++s.leafCount;
+                s.sahCost += double(b.surfaceArea()) * invRootArea_ * options_.intersectionCost *
+                             children[k]->count;
+            }
+        }
+        // A traversal of this node pushes at most n - 1 siblings before descending into one child.
+        uint32_t stack = 0;
+        for (int k = 0; k < n; ++k) {
+            if (children[k]->count > 0) continue;
+            node.offset[k] = emitChildrenOf(*children[k], depth + 1);
+            stack = std::max(stack, stackNeed_);
+        }
+        stackNeed_ = stack + uint32_t(n - 1);
+        s.maxStack = std::max(s.maxStack, stackNeed_);
+        bvh_.nodes[index] = node;
+        return index;
     }
 
     Bvh& bvh_;
     const BvhBuildOptions& options_;
+    int width_;
     double invRootArea_;
+    uint32_t stackNeed_ = 0;  // stack bound of the subtree emitted last
 };
 
 }  // namespace
@@ -204,8 +249,17 @@ Bvh buildBvh(const Scene& scene, const BvhBuildOptions& options) {
         });
         std::unique_ptr<BuildNode> root = Builder(options, refs).build(0, numPrims, 0);
 
-        bvh.nodes.reserve(2 * size_t(numPrims));
-        Flattener(bvh, options, root->bounds.surfaceArea()).emitRoot(*root);
+        // A traversal needs at most (width - 1) stack entries per level; should a pathological
+        // tree need more than kBvhStackSize, fall back to binary nodes (one entry per level).
+        const int width = std::clamp(options.width, 2, BvhNode::kWidth);
+        for (int w : {width, 2}) {
+            bvh.nodes.clear();
+            bvh.stats = BvhStats();
+            bvh.stats.width = uint32_t(w);
+            bvh.nodes.reserve(size_t(numPrims));
+            Collapser(bvh, options, w, root->bounds.surfaceArea()).emitRoot(*root);
+            if (bvh.stats.maxStack <= uint32_t(kBvhStackSize)) break;
+        }
         bvh.nodes.shrink_to_fit();
         root.reset();
 

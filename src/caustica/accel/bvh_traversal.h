@@ -1,13 +1,14 @@
 // bvh_traversal.h — closest-hit and any-hit BVH traversal, one source for CPU and GPU.
 //
-// Stack-based, no recursion, no allocation: at an interior node both children's boxes are tested,
-// the nearer child is visited next and the farther one pushed together with its entry distance, so
-// that it is skipped on pop when a closer hit has been found meanwhile.
+// Stack-based, no recursion, no allocation: at an inner node all (up to four) child boxes are
+// tested, the nearest child hit is visited next and the others are pushed far to near together with
+// their entry distances, so that they are skipped on pop when a closer hit has been found
+// meanwhile.
 //
-// Choices measured with bench/bench_rays.cpp (docs/PERFORMANCE.md): children stored as a pair in
-// one cache line; the next node chosen with branches rather than selects (a select makes the next
-// fetch wait for the box tests: 20% slower); ordering by entry distance rather than by the sign of
-// the ray direction on the split axis (10-20% faster); precomputed leaf-order primitives.
+// Choices measured with bench/bench_rays.cpp (docs/PERFORMANCE.md): 4-wide nodes with SoA boxes
+// (1.3-2x faster than the binary layout they are collapsed from); the next node chosen with
+// branches rather than selects (a select makes the next fetch wait for the box tests); ordering by
+// entry distance rather than by direction signs; precomputed leaf-order primitives.
 #pragma once
 
 #include <cstdint>
@@ -32,22 +33,32 @@ struct TraversalRay {
     }
 };
 
-/// Slab test (Kay and Kajiya, "Ray Tracing Complex Scenes", SIGGRAPH 1986) against [0, tMax]. The
-/// far distance is enlarged by 1 + 2 gamma(3) so that rounding never culls a box the ray touches
-/// (Ize, "Robust BVH Ray Traversal", JCGT 2(2), 2013; as in pbrt-v4's Bounds3::IntersectP).
-CA_HD_INLINE bool intersectBox(const BvhNode& node, const TraversalRay& r, Float tMax,
-                               Float& tNear) {
+/// Slab tests (Kay and Kajiya, "Ray Tracing Complex Scenes", SIGGRAPH 1986) of the four child
+/// boxes of `node` against [0, tMax]. Returns a bit mask of the children hit and their entry
+/// distances. The exit distance is enlarged by 1 + 2 gamma(3) so that rounding never culls a box
+/// the ray touches (Ize, "Robust BVH Ray Traversal", JCGT 2(2), 2013; as pbrt-v4 does). Empty
+/// slots have NaN boxes, for which every comparison fails.
+CA_HD_INLINE uint32_t intersectChildren(const BvhNode& node, const TraversalRay& r, Float tMax,
+                                        Float tEntry[BvhNode::kWidth]) {
     constexpr Float kRobustScale = 1 + 2 * (3 * 0x1p-24f) / (1 - 3 * 0x1p-24f);
-    const Float tx0 = (node.lo.x - r.o.x) * r.invD.x, tx1 = (node.hi.x - r.o.x) * r.invD.x;
-    const Float ty0 = (node.lo.y - r.o.y) * r.invD.y, ty1 = (node.hi.y - r.o.y) * r.invD.y;
-    const Float tz0 = (node.lo.z - r.o.z) * r.invD.z, tz1 = (node.hi.z - r.o.z) * r.invD.z;
-    // The box overlaps [0, tMax] iff tEntry <= min(tExit, tMax) and tExit >= 0. tEntry is not
-    // clamped to 0: it only orders and culls subtrees, and a negative value does both correctly.
-    // (Clamping made GCC emit a data-dependent branch per box.)
-    const Float tEntry = max(max(min(tx0, tx1), min(ty0, ty1)), min(tz0, tz1));
-    const Float tExit = min(min(max(tx0, tx1), max(ty0, ty1)), max(tz0, tz1)) * kRobustScale;
-    tNear = tEntry;
-    return (tEntry <= min(tExit, tMax)) & (tExit >= 0);
+    const Float o[3] = {r.o.x, r.o.y, r.o.z}, invD[3] = {r.invD.x, r.invD.y, r.invD.z};
+    Float tExit[BvhNode::kWidth];
+    // Straight-line loops over the four children: vectorised on the CPU (4-wide SSE).
+    for (int k = 0; k < BvhNode::kWidth; ++k) {
+        Float t0[3], t1[3];
+        for (int axis = 0; axis < 3; ++axis) {
+            t0[axis] = (node.lo[axis][k] - o[axis]) * invD[axis];
+            t1[axis] = (node.hi[axis][k] - o[axis]) * invD[axis];
+        }
+        // tEntry is not clamped to 0: it only orders and culls subtrees, which a negative value
+        // does correctly, and the overlap test below checks tExit >= 0 instead.
+        tEntry[k] = max(max(min(t0[0], t1[0]), min(t0[1], t1[1])), min(t0[2], t1[2]));
+        tExit[k] = min(min(max(t0[0], t1[0]), max(t0[1], t1[1])), max(t0[2], t1[2])) * kRobustScale;
+    }
+    uint32_t mask = 0;
+    for (int k = 0; k < BvhNode::kWidth; ++k)
+        mask |= uint32_t((tEntry[k] <= min(tExit[k], tMax)) & (tExit[k] >= 0)) << k;
+    return mask;
 }
 
 /// Tests primitives [begin, begin + count) of primIndices, updating `hit` (whose t is the current
@@ -87,23 +98,19 @@ CA_HD_INLINE bool intersectLeaf(const BvhView& bvh, const SceneView& scene, uint
 }
 
 /// Shared traversal loop. `best.t` holds the search limit on entry and the closest t on exit.
-/// The node being visited is carried in registers as (offset, count) — copied from its record in
-/// the parent's pair, which was just read for the box test — so each step costs one dependent
-/// memory access: the pair of its children.
+/// The child being visited is carried in registers as (offset, count), copied from its parent's
+/// slot, so each step costs one dependent memory access: the node of its children.
 template <bool AnyHit>
 CA_HD bool traverse(const BvhView& bvh, const SceneView& scene, const Ray& ray, Hit& best) {
     if (bvh.nodes.empty()) return false;
     const TraversalRay r(ray);
-    Float tNear;
-    if (!intersectBox(bvh.nodes[0], r, best.t, tNear)) return false;
-
     struct Entry {
         uint32_t offset, count;
         Float tNear;
     };
     Entry stack[kBvhStackSize];
     int sp = 0;
-    uint32_t offset = bvh.nodes[0].offset, count = bvh.nodes[0].primCount();
+    uint32_t offset = 0, count = 0;  // start at the root node
     bool found = false;
     for (;;) {
         if (count > 0) {
@@ -112,37 +119,26 @@ CA_HD bool traverse(const BvhView& bvh, const SceneView& scene, const Ray& ray, 
                 found = true;
             }
         } else {
-            // Both children share one cache line; their links are read along with their boxes.
-            const BvhNode& a = bvh.nodes[offset];
-            const BvhNode& b = bvh.nodes[offset + 1];
-            const uint32_t offsetA = a.offset, countA = a.primCount();
-            const uint32_t offsetB = b.offset, countB = b.primCount();
-            Float tA, tB;
-            const bool hitA = intersectBox(a, r, best.t, tA);
-            const bool hitB = intersectBox(b, r, best.t, tB);
-            // Plain branches, not selects: the CPU predicts which child comes next and starts
-            // fetching its children while the box test is still being resolved.
-            if (hitA && hitB) {
-                // Visit the nearer child now, the farther one later (front to back).
-                if (tB < tA) {
-                    stack[sp++] = Entry{offsetA, countA, tA};
-                    offset = offsetB;
-                    count = countB;
-                } else {
-                    stack[sp++] = Entry{offsetB, countB, tB};
-                    offset = offsetA;
-                    count = countA;
+            const BvhNode& node = bvh.nodes[offset];
+            Float tEntry[BvhNode::kWidth];
+            uint32_t mask = intersectChildren(node, r, best.t, tEntry);
+            if (mask != 0) {
+                // Children hit, sorted front to back by entry distance (insertion sort of <= 4).
+                int order[BvhNode::kWidth];
+                int n = 0;
+                for (int k = 0; k < BvhNode::kWidth; ++k) {
+                    if (!(mask & (1u << k))) continue;
+                    int j = n++;
+                    for (; j > 0 && tEntry[order[j - 1]] > tEntry[k]; --j) order[j] = order[j - 1];
+                    order[j] = k;
                 }
-                continue;
-            }
-            if (hitA) {
-                offset = offsetA;
-                count = countA;
-                continue;
-            }
-            if (hitB) {
-                offset = offsetB;
-                count = countB;
+                // Farther children wait on the stack, the nearest is visited now.
+                for (int j = n - 1; j > 0; --j) {
+                    const int k = order[j];
+                    stack[sp++] = Entry{node.offset[k], node.count[k], tEntry[k]};
+                }
+                offset = node.offset[order[0]];
+                count = node.count[order[0]];
                 continue;
             }
         }

@@ -31,8 +31,8 @@ const char* errorName(RTCError code) {
 }
 
 void errorCallback(void* user, RTCError code, const char* message) {
-    *static_cast<std::string*>(user) = std::string(errorName(code)) + (message ? ": " : "") +
-                                       (message ? message : "");
+    *static_cast<std::string*>(user) =
+        std::string(errorName(code)) + (message ? ": " : "") + (message ? message : "");
 }
 
 // ---- sphere user geometry: the callbacks run caustica's own intersectSphere ------------------
@@ -109,8 +109,7 @@ void setRay(RTCRay& r, const Ray& ray) {
 
 }  // namespace
 
-EmbreeScene::EmbreeScene(const Scene& scene)
-    : numTriangles_(uint32_t(scene.triangles.size())) {
+EmbreeScene::EmbreeScene(const Scene& scene) : numTriangles_(uint32_t(scene.triangles.size())) {
     const auto start = std::chrono::steady_clock::now();
     device_ = rtcNewDevice(nullptr);
     if (!device_)
@@ -124,10 +123,11 @@ EmbreeScene::EmbreeScene(const Scene& scene)
         if (numTriangles_ > 0) {
             RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
             check("rtcNewGeometry(triangle)");
-            // Embree-allocated buffers are padded for its 16-byte loads; shared std::vectors are not.
-            void* vertices = rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0,
-                                                     RTC_FORMAT_FLOAT3, sizeof(Vec3f),
-                                                     scene.positions.size());
+            // Embree-allocated buffers are padded for its 16-byte loads; shared std::vectors are
+            // not.
+            void* vertices =
+                rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                        sizeof(Vec3f), scene.positions.size());
             void* indices = rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0,
                                                     RTC_FORMAT_UINT3, sizeof(Vec3u), numTriangles_);
             check("rtcSetNewGeometryBuffer");
@@ -173,8 +173,8 @@ void EmbreeScene::release() {
 void EmbreeScene::check(const char* what) {
     const RTCError code = rtcGetDeviceError(device_);
     if (code == RTC_ERROR_NONE) return;
-    throw Error(std::string("Embree: ") + what + " failed: " +
-                (lastMessage_.empty() ? errorName(code) : lastMessage_));
+    throw Error(std::string("Embree: ") + what +
+                " failed: " + (lastMessage_.empty() ? errorName(code) : lastMessage_));
 }
 
 bool EmbreeIntersector::intersect(const Ray& ray, Hit& hit) const {

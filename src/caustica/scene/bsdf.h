@@ -146,32 +146,39 @@ CA_HD_INLINE bool isDeltaLocal(const Bsdf& b) {
     return b.type == BsdfType::Dielectric || b.type == BsdfType::Conductor;
 }
 
+/// A direction pair in the shading frame, mirrored to the front for the back of a twosided BSDF,
+/// with the concrete (non-twosided) BSDF that applies.
+struct LocalPair {
+    const Bsdf* bsdf;
+    Vec3f wo, wi;
+};
+
+CA_HD_INLINE LocalPair resolvePair(Span<const Bsdf> bsdfs, uint32_t id, const SurfaceInteraction& si,
+                                   Vec3f wo, Vec3f wi) {
+    const Frame frame(si.ns);
+    Vec3f woL = frame.toLocal(wo), wiL = frame.toLocal(wi);
+    const Resolved r = resolve(bsdfs, id, woL.z);
+    if (r.flip) {
+        woL = flipZ(woL);
+        wiL = flipZ(wiL);
+    }
+    return {r.bsdf, woL, wiL};
+}
+
 }  // namespace bsdf_detail
 
 /// f(wo, wi) · |cosθi| of the non-delta part of BSDF `id` at `si` (world-space unit directions).
 CA_HD_INLINE Spectrum evalBsdf(Span<const Bsdf> bsdfs, uint32_t id, const SurfaceInteraction& si,
                                Vec3f wo, Vec3f wi) {
-    const Frame frame(si.ns);
-    Vec3f woL = frame.toLocal(wo), wiL = frame.toLocal(wi);
-    const bsdf_detail::Resolved r = bsdf_detail::resolve(bsdfs, id, woL.z);
-    if (r.flip) {
-        woL = bsdf_detail::flipZ(woL);
-        wiL = bsdf_detail::flipZ(wiL);
-    }
-    return bsdf_detail::evalLocal(*r.bsdf, woL, wiL);
+    const bsdf_detail::LocalPair p = bsdf_detail::resolvePair(bsdfs, id, si, wo, wi);
+    return bsdf_detail::evalLocal(*p.bsdf, p.wo, p.wi);
 }
 
 /// Solid-angle pdf with which sampleBsdf draws `wi` from its non-delta part.
 CA_HD_INLINE Float pdfBsdf(Span<const Bsdf> bsdfs, uint32_t id, const SurfaceInteraction& si,
                            Vec3f wo, Vec3f wi) {
-    const Frame frame(si.ns);
-    Vec3f woL = frame.toLocal(wo), wiL = frame.toLocal(wi);
-    const bsdf_detail::Resolved r = bsdf_detail::resolve(bsdfs, id, woL.z);
-    if (r.flip) {
-        woL = bsdf_detail::flipZ(woL);
-        wiL = bsdf_detail::flipZ(wiL);
-    }
-    return bsdf_detail::pdfLocal(*r.bsdf, woL, wiL);
+    const bsdf_detail::LocalPair p = bsdf_detail::resolvePair(bsdfs, id, si, wo, wi);
+    return bsdf_detail::pdfLocal(*p.bsdf, p.wo, p.wi);
 }
 
 /// Samples an incident direction. `uLobe` chooses between lobes (dielectric reflection or

@@ -28,7 +28,8 @@ inline constexpr int kBvhStackSize = 64;
 /// Child slot k is
 ///   a leaf          count[k] > 0: primitives primIndices[offset[k], offset[k] + count[k])
 ///   an inner node   count[k] = 0: its node is nodes[offset[k]]
-///   empty           count[k] = 0 and a NaN box, which no ray hits (isEmpty)
+///   empty           count[k] = 0 and a NaN box, which no ray hits (isEmpty; this relies on IEEE
+///                   comparisons, so kernels must not be built with -ffast-math / --use_fast_math)
 ///
 /// The binary SAH tree is collapsed into this layout by pulling up grandchildren, largest surface
 /// area first (Wald, Benthin and Boulos, "Getting Rid of Packets: Efficient SIMD Single-Ray
@@ -81,7 +82,7 @@ struct BvhBuildOptions {
 
 /// Figures for `caustica info` and the tests.
 struct BvhStats {
-    uint32_t nodeCount = 0;  // 4-wide nodes
+    uint32_t nodeCount = 0;  // nodes of up to `width` children each
     uint32_t leafCount = 0;
     uint32_t maxDepth = 0;       // nodes on the longest root-to-leaf path
     uint32_t width = 0;          // children per node used (see BvhBuildOptions::width)

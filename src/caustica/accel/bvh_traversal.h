@@ -6,7 +6,7 @@
 // meanwhile.
 //
 // Choices measured with bench/bench_rays.cpp (docs/PERFORMANCE.md): 4-wide nodes with SoA boxes
-// (1.3-2x faster than the binary layout they are collapsed from); the next node chosen with
+// (1.3-1.7x faster than the binary layout they are collapsed from); the next node chosen with
 // branches rather than selects (a select makes the next fetch wait for the box tests); ordering by
 // entry distance rather than by direction signs; precomputed leaf-order primitives.
 #pragma once

@@ -2,12 +2,18 @@
 // It does not launch anything (the build machines have no GPU): it only reports what it holds.
 #include <cstdio>
 
+#include "caustica/parallel/backend.h"
+#include "cuda/cuda_backend.h"
 #include "kernel_check.h"
 
 int main() {
     auto path = &caustica::launchPathMegakernel;
     auto gather = &caustica::launchFilmSplat;
-    std::printf("caustica CUDA kernels linked: path megakernel %s, film splat %s\n",
-                path ? "yes" : "no", gather ? "yes" : "no");
-    return 0;
+    caustica::registerCudaBackend();  // installs function pointers only; touches no GPU
+    const caustica::GpuBackend* backend = caustica::gpuBackend();
+    std::printf(
+        "caustica CUDA kernels linked: path megakernel %s, film splat %s, "
+        "primitives backend %s\n",
+        path ? "yes" : "no", gather ? "yes" : "no", backend ? backend->name : "no");
+    return backend ? 0 : 1;
 }

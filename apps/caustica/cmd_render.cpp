@@ -14,6 +14,7 @@
 #include "render_output.h"
 #include "caustica/accel/accel.h"
 #include "caustica/integrators/path/path_integrator.h"
+#include "caustica/integrators/path/wavefront.h"
 #include "caustica/integrators/render_loop.h"
 #include "caustica/io/scene_loader.h"
 #include "caustica/util/error.h"
@@ -42,6 +43,7 @@ struct RenderOptions {
     std::vector<std::string> defines;
     std::string accel = "embree";
     std::string integrator = "path";
+    std::string pathMode = "megakernel";
     std::string statsJson;
     int sppPerPass = 0;
     double checkpointEvery = 60;
@@ -84,6 +86,10 @@ std::function<int()> addRenderCommand(CLI::App& app) {
         ->check(CLI::IsMember({"embree", "bvh"}));
     cmd->add_option("--integrator", opt->integrator, "Integrator (overrides the scene's)")
         ->check(CLI::IsMember({"path"}));
+    cmd->add_option("--path-mode", opt->pathMode,
+                    "Path tracer execution: megakernel (one work item per path) or wavefront "
+                    "(one kernel per bounce stage); both give the same image")
+        ->check(CLI::IsMember({"megakernel", "wavefront"}));
     cmd->add_option("--stats-json", opt->statsJson, "Write the final statistics as JSON to this file");
     cmd->add_option("--spp-per-pass", opt->sppPerPass, "Samples per pixel in one pass (progress and "
                                                        "checkpoint granularity; default: about 256k samples a pass)")->check(CLI::Range(1, 4096));
@@ -150,7 +156,10 @@ std::function<int()> addRenderCommand(CLI::App& app) {
                 saveCheckpoint(checkpoint, f, opt->seed);
             }
         };
+        const bool wavefront = opt->pathMode == "wavefront";
         auto renderPass = [&](int first, int k, SamplePass& pass) {
+            if (wavefront)
+                return renderPathPassWavefront(scene, accel, settings, opt->seed, first, pass);
             return renderPathPass(scene, accel, settings, opt->seed, first, pass);
         };
         RenderStats stats = runRenderLoop(film, budget, renderPass, passDone);

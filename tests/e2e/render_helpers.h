@@ -11,6 +11,7 @@
 #include "caustica/accel/accel.h"
 #include "caustica/film/film.h"
 #include "caustica/integrators/path/path_integrator.h"
+#include "caustica/integrators/path/wavefront.h"
 #include "caustica/integrators/render_loop.h"
 #include "caustica/io/scene_loader.h"
 
@@ -25,6 +26,7 @@ struct RenderRequest {
     uint64_t seed = 0;
     AccelKind accel = AccelKind::Embree;
     int threads = 0;  // 0 = all
+    bool wavefront = false;  // path tracer execution: megakernel (false) or wavefront (true)
 };
 
 /// Renders a loaded scene with the path tracer and returns the developed image.
@@ -36,6 +38,8 @@ inline Image renderImage(const Scene& scene, const RenderRequest& request) {
     budget.samplesPerPass = 4;
     const PathSettings settings = pathSettingsFrom(scene.integrator);
     auto pass = [&](int first, int, SamplePass& p) {
+        if (request.wavefront)
+            return renderPathPassWavefront(scene, accel, settings, request.seed, first, p);
         return renderPathPass(scene, accel, settings, request.seed, first, p);
     };
     if (request.threads > 0) {

@@ -103,8 +103,105 @@ void writeExr(const std::string& path, const Image& image, const ImageMetadata& 
     file.writePixels(image.height);
 }
 
+/// Bytes OpenEXR reads for an attribute of a fixed-size type whatever size the file gives, or -1.
+int64_t exrFixedAttributeSize(const std::string& type) {
+    static const std::pair<const char*, int> kSizes[] = {
+        {"box2i", 16}, {"box2f", 16}, {"v2i", 8},  {"v2f", 8},  {"v2d", 16},
+        {"v3i", 12},   {"v3f", 12},   {"v3d", 24}, {"m33f", 36}, {"m33d", 72},
+        {"m44f", 64},  {"m44d", 128}, {"int", 4},  {"float", 4}, {"double", 8},
+        {"compression", 1}, {"lineOrder", 1}, {"envmap", 1}, {"deepImageState", 1},
+        {"tiledesc", 9}, {"rational", 8}, {"keycode", 28}, {"timecode", 8},
+        {"chromaticities", 32}};
+    for (const auto& [name, bytes] : kSizes)
+        if (type == name) return bytes;
+    return -1;
+}
+
+/// Walks the EXR header(s) before OpenEXR sees the file: OpenEXR allocates an attribute's value
+/// with the size the file claims before reading it, so a few bytes claiming a 2 GB attribute
+/// would cost 2 GB. Refuses attributes larger than what is left of the file (found by fuzzing).
+void checkExrHeader(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(path, 0, "cannot open file for reading (missing or unreadable)");
+    std::error_code ec;
+    const uint64_t fileSize = std::filesystem::file_size(path, ec);
+    if (ec) throw Error(path, 0, "cannot determine the file size");
+    unsigned char head[8];
+    if (!in.read(reinterpret_cast<char*>(head), 8))
+        throw Error(path, 0, "corrupt header: the file is too short to be an EXR image");
+    if (head[0] != 0x76 || head[1] != 0x2f || head[2] != 0x31 || head[3] != 0x01)
+        throw Error(path, 0, "corrupt header: not an OpenEXR file (bad magic number)");
+    const bool multipart = (head[5] & 0x10) != 0;  // version flags, bit 12
+    auto readName = [&](std::string& out) {
+        out.clear();
+        for (char c; in.get(c);) {
+            if (c == '\0') return;
+            if (out.size() >= 255) throw Error(path, 0, "corrupt header: attribute name too long");
+            out.push_back(c);
+        }
+        throw Error(path, 0, "truncated header");
+    };
+    std::string name, type;
+    for (bool firstHeader = true;; firstHeader = false) {
+        readName(name);
+        if (name.empty()) {
+            if (firstHeader) throw Error(path, 0, "corrupt header: empty header");
+            return;  // the empty header ending a multi-part file's list of headers
+        }
+        for (; !name.empty(); readName(name)) {
+            readName(type);
+            unsigned char sz[4];
+            if (!in.read(reinterpret_cast<char*>(sz), 4)) throw Error(path, 0, "truncated header");
+            const int32_t size = int32_t(uint32_t(sz[0]) | uint32_t(sz[1]) << 8 |
+                                         uint32_t(sz[2]) << 16 | uint32_t(sz[3]) << 24);
+            const uint64_t pos = uint64_t(in.tellg());
+            if (size < 0 || uint64_t(size) > fileSize - std::min(pos, fileSize))
+                throw Error(path, 0,
+                            "corrupt header: attribute '" + name + "' claims " +
+                                std::to_string(size) + " bytes, more than the file holds");
+            // OpenEXR reads fixed-size types and channel lists by their type, not by `size`:
+            // follow it so that this walk stays where OpenEXR is.
+            if (type == "chlist") {
+                std::string channel;
+                for (readName(channel); !channel.empty(); readName(channel))
+                    in.seekg(16, std::ios::cur);
+                continue;
+            }
+            auto readU32 = [&] {
+                unsigned char b[4];
+                if (!in.read(reinterpret_cast<char*>(b), 4)) throw Error(path, 0, "truncated header");
+                return uint32_t(b[0]) | uint32_t(b[1]) << 8 | uint32_t(b[2]) << 16 |
+                       uint32_t(b[3]) << 24;
+            };
+            auto refuse = [&] {
+                throw Error(path, 0, "corrupt header: attribute '" + name + "' (" + type +
+                                         ") holds more than the file does");
+            };
+            if (type == "preview") {  // width, height, then 4 bytes per pixel, allocated first
+                const uint64_t w = readU32(), h = readU32();
+                if (w * h > (fileSize - std::min(uint64_t(in.tellg()), fileSize)) / 4) refuse();
+                in.seekg(int64_t(w * h * 4), std::ios::cur);
+                continue;
+            }
+            if (type == "stringvector") {  // (length, bytes) pairs, each length allocated first
+                const uint64_t end = pos + uint64_t(size);
+                while (uint64_t(in.tellg()) < end) {
+                    const uint32_t n = readU32();
+                    if (uint64_t(in.tellg()) + n > end) refuse();
+                    in.seekg(n, std::ios::cur);
+                }
+                continue;
+            }
+            const int64_t fixed = exrFixedAttributeSize(type);
+            in.seekg(fixed >= 0 ? fixed : size, std::ios::cur);
+        }
+        if (!multipart) return;
+    }
+}
+
 Image readExr(const std::string& path) {
     requireReadable(path);
+    checkExrHeader(path);
     Imf::InputFile file(path.c_str());
     const Imath::Box2i dw = file.header().dataWindow();
     const int64_t w = int64_t(dw.max.x) - dw.min.x + 1, h = int64_t(dw.max.y) - dw.min.y + 1;
@@ -143,6 +240,7 @@ Image readExr(const std::string& path) {
 
 ImageMetadata readExrMetadata(const std::string& path) {
     requireReadable(path);
+    checkExrHeader(path);
     Imf::InputFile file(path.c_str());
     ImageMetadata metadata;
     for (auto it = file.header().begin(); it != file.header().end(); ++it)
@@ -300,17 +398,21 @@ Image readPng(const std::string& path) {
     if (!stbi_info_from_memory(data.data(), size, &w, &h, &n))
         throw Error(path, 0, std::string("corrupt header: ") + stbReason());
     checkSize(path, w, h);
-    Image image(w, h);
+    // The image is allocated only once stb has decoded the pixels: a header alone may claim up
+    // to kMaxImagePixels (found by fuzzing: an 86-byte PNG cost 1.6 GB and seconds).
+    Image image;
     if (stbi_is_16_bit_from_memory(data.data(), size)) {
         std::unique_ptr<stbi_us, void (*)(void*)> p(
             stbi_load_16_from_memory(data.data(), size, &w, &h, &n, 3), stbi_image_free);
         if (!p) throw Error(path, 0, std::string("corrupt or truncated data: ") + stbReason());
+        image = Image(w, h);
         for (size_t i = 0; i < image.rgb.size(); ++i)
             image.rgb[i] = srgbToLinear(float(p.get()[i]) / 65535.0f);
     } else {
         std::unique_ptr<stbi_uc, void (*)(void*)> p(
             stbi_load_from_memory(data.data(), size, &w, &h, &n, 3), stbi_image_free);
         if (!p) throw Error(path, 0, std::string("corrupt or truncated data: ") + stbReason());
+        image = Image(w, h);
         for (size_t i = 0; i < image.rgb.size(); ++i)
             image.rgb[i] = srgbToLinear(float(p.get()[i]) / 255.0f);
     }

@@ -3,9 +3,13 @@
 // GpuBackend table of caustica_parallel (parallel/backend.h). Every call is on the default
 // stream; functions that return a value synchronize by copying it back. Scratch memory is
 // allocated per call. Every CUDA call is checked (caustica::Error on failure).
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <limits>
+#include <mutex>
+#include <string>
+#include <unordered_map>
 
 #include <thrust/iterator/counting_iterator.h>
 #include <cub/device/device_radix_sort.cuh>
@@ -20,15 +24,63 @@
 namespace caustica {
 namespace {
 
+/// Every cudaMalloc of the backend goes through trackedMalloc/trackedFree, which keep the bytes
+/// held and their high-water mark (cudaMemoryCounters()).
+struct AllocationTracker {
+    std::mutex mutex;
+    std::unordered_map<const void*, size_t> sizes;
+    size_t current = 0, peak = 0;
+};
+
+AllocationTracker& tracker() {
+    static AllocationTracker t;  // never destroyed before the last Buffer (function-local static)
+    return t;
+}
+
+/// cudaMalloc that throws caustica::Error (never a crash) on failure, out of memory included, and
+/// clears the (non-sticky) error state so that the process can go on, e.g. on the CPU.
+void* trackedMalloc(size_t bytes) {
+    void* ptr = nullptr;
+    const cudaError_t status = cudaMalloc(&ptr, bytes);
+    if (status != cudaSuccess) {
+        (void)cudaGetLastError();
+        checkCuda(status, ("cudaMalloc of " + std::to_string(bytes) + " bytes").c_str(), __FILE__,
+                  __LINE__);
+    }
+    AllocationTracker& t = tracker();
+    std::lock_guard<std::mutex> lock(t.mutex);
+    t.sizes[ptr] = bytes;
+    t.current += bytes;
+    t.peak = std::max(t.peak, t.current);
+    return ptr;
+}
+
+/// cudaFree; never throws (destructors call it): failures are reported on stderr and cleared.
+void trackedFree(void* ptr) {
+    if (!ptr) return;
+    {
+        AllocationTracker& t = tracker();
+        std::lock_guard<std::mutex> lock(t.mutex);
+        auto it = t.sizes.find(ptr);
+        if (it != t.sizes.end()) {
+            t.current -= it->second;
+            t.sizes.erase(it);
+        }
+    }
+    const cudaError_t status = cudaFree(ptr);
+    if (status != cudaSuccess) {
+        std::fprintf(stderr, "caustica: cudaFree failed: %s\n", cudaGetErrorString(status));
+        (void)cudaGetLastError();
+    }
+}
+
 /// Device memory released when the scope ends (CUB temporary storage, alternate sort buffers).
 class DeviceScratch {
 public:
     explicit DeviceScratch(size_t bytes) {
-        if (bytes > 0) CA_CUDA_CHECK(cudaMalloc(&ptr_, bytes));
+        if (bytes > 0) ptr_ = trackedMalloc(bytes);
     }
-    ~DeviceScratch() {
-        if (ptr_) cudaFree(ptr_);
-    }
+    ~DeviceScratch() { trackedFree(ptr_); }
     DeviceScratch(const DeviceScratch&) = delete;
     DeviceScratch& operator=(const DeviceScratch&) = delete;
     void* get() const { return ptr_; }
@@ -53,17 +105,11 @@ int deviceCount() {
 }
 
 void* allocate(size_t bytes) {
-    void* ptr = nullptr;
-    CA_CUDA_CHECK(cudaMalloc(&ptr, bytes));
-    return ptr;
+    return trackedMalloc(bytes);
 }
 
 void release(void* ptr) {
-    const cudaError_t status = cudaFree(ptr);
-    if (status != cudaSuccess) {  // destructors cannot throw: report and clear the error
-        std::fprintf(stderr, "caustica: cudaFree failed: %s\n", cudaGetErrorString(status));
-        (void)cudaGetLastError();
-    }
+    trackedFree(ptr);
 }
 
 void copy(void* dst, const void* src, size_t bytes) {
@@ -180,6 +226,44 @@ const GpuBackend kCudaBackend = {
 
 void registerCudaBackend() {
     setGpuBackend(&kCudaBackend);
+}
+
+CudaMemoryCounters cudaMemoryCounters() {
+    AllocationTracker& t = tracker();
+    std::lock_guard<std::mutex> lock(t.mutex);
+    return CudaMemoryCounters{t.current, t.peak};
+}
+
+void resetCudaPeakBytes() {
+    AllocationTracker& t = tracker();
+    std::lock_guard<std::mutex> lock(t.mutex);
+    t.peak = t.current;
+}
+
+bool cudaMemoryInfo(size_t& freeBytes, size_t& totalBytes) {
+    freeBytes = totalBytes = 0;
+    if (cudaDeviceCountOrZero() == 0) return false;
+    if (cudaMemGetInfo(&freeBytes, &totalBytes) != cudaSuccess) {
+        (void)cudaGetLastError();
+        freeBytes = totalBytes = 0;
+        return false;
+    }
+    return true;
+}
+
+std::string cudaDeviceDescription() {
+    if (cudaDeviceCountOrZero() == 0) return "";
+    int device = 0;
+    cudaDeviceProp prop{};
+    if (cudaGetDevice(&device) != cudaSuccess ||
+        cudaGetDeviceProperties(&prop, device) != cudaSuccess) {
+        (void)cudaGetLastError();
+        return "";
+    }
+    char text[700];
+    std::snprintf(text, sizeof text, "%s (sm_%d%d, %.1f GiB)", prop.name, prop.major, prop.minor,
+                  double(prop.totalGlobalMem) / double(size_t(1) << 30));
+    return text;
 }
 
 int cudaDeviceCountOrZero() {

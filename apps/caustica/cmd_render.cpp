@@ -13,12 +13,20 @@
 #include "commands.h"
 #include "render_output.h"
 #include "caustica/accel/accel.h"
+#include "caustica/integrators/path/gpu_memory.h"
 #include "caustica/integrators/path/path_integrator.h"
 #include "caustica/integrators/path/wavefront.h"
 #include "caustica/integrators/render_loop.h"
 #include "caustica/io/scene_loader.h"
 #include "caustica/util/error.h"
+#include "caustica/parallel/device_select.h"
+#include "caustica/parallel/kernel_stats.h"
 #include "caustica/util/progress.h"
+
+#ifdef CAUSTICA_WITH_CUDA
+#include "cuda/cuda_backend.h"
+#include "cuda/gpu_path.h"
+#endif
 
 namespace caustica::cli {
 namespace {
@@ -44,6 +52,9 @@ struct RenderOptions {
     std::string accel = "embree";
     std::string integrator = "path";
     std::string pathMode = "megakernel";
+    std::string device = "auto";
+    std::string gpuMode = "megakernel";
+    bool kernelStats = false;
     std::string statsJson;
     int sppPerPass = 0;
     double checkpointEvery = 60;
@@ -82,14 +93,24 @@ std::function<int()> addRenderCommand(CLI::App& app) {
                                          "seed); the image depends only on it, never on the thread count");
     cmd->add_option("--res", opt->res, "Override the film resolution, WIDTHxHEIGHT");
     cmd->add_option("-D,--define", opt->defines, "Set a scene <default> parameter: -D name=value (repeatable)");
-    cmd->add_option("--accel", opt->accel, "Ray-tracing backend on the CPU")
+    cmd->add_option("--accel", opt->accel, "Ray-tracing backend on the CPU (the GPU always traces the own BVH)")
         ->check(CLI::IsMember({"embree", "bvh"}));
     cmd->add_option("--integrator", opt->integrator, "Integrator (overrides the scene's)")
         ->check(CLI::IsMember({"path"}));
     cmd->add_option("--path-mode", opt->pathMode,
-                    "Path tracer execution: megakernel (one work item per path) or wavefront "
-                    "(one kernel per bounce stage); both give the same image")
+                    "Path tracer execution on the CPU: megakernel (one work item per path) or "
+                    "wavefront (one kernel per bounce stage); both give the same image")
         ->check(CLI::IsMember({"megakernel", "wavefront"}));
+    cmd->add_option("--device", opt->device,
+                    "Where to render: cpu, cuda, or auto (default: the GPU when this binary has "
+                    "the CUDA backend and a GPU is present, else the CPU)")
+        ->check(CLI::IsMember({"cpu", "cuda", "auto"}));
+    cmd->add_option("--gpu-mode", opt->gpuMode,
+                    "Path tracer execution on the GPU: megakernel (one thread per pixel sample) "
+                    "or wavefront (one kernel per bounce stage over compacted queues)")
+        ->check(CLI::IsMember({"megakernel", "wavefront"}));
+    cmd->add_flag("--kernel-stats", opt->kernelStats,
+                  "Time every named kernel launch and print the per-kernel table at the end");
     cmd->add_option("--stats-json", opt->statsJson, "Write the final statistics as JSON to this file");
     cmd->add_option("--spp-per-pass", opt->sppPerPass, "Samples per pixel in one pass (progress and "
                                                        "checkpoint granularity; default: about 256k samples a pass)")->check(CLI::Range(1, 4096));
@@ -106,6 +127,13 @@ std::function<int()> addRenderCommand(CLI::App& app) {
         if (opt->threads > 0)
             threadLimit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
                                                                 size_t(opt->threads));
+        // The device first: `--device cuda` without a GPU fails before any work is done.
+        const DeviceKind device = selectDevice(opt->device, currentDeviceAvailability());
+        const bool onGpu = device == DeviceKind::Cuda;
+        if (opt->kernelStats) {
+            KernelStats::global().reset();
+            KernelStats::global().setEnabled(true);
+        }
         if (opt->outputs.empty())
             opt->outputs.push_back(std::filesystem::path(opt->scene).stem().string() + ".exr");
         for (const std::string& out : opt->outputs) checkOutputPath(out);
@@ -123,14 +151,16 @@ std::function<int()> addRenderCommand(CLI::App& app) {
             std::fprintf(stderr, "resuming from %s at %d spp\n", checkpoint.c_str(), int(film.samplesPerPixel()));
         }
 
-        const AccelKind accelKind = parseAccelKind(opt->accel);
+        // The GPU traces the own BVH; --accel chooses the CPU's backend.
+        const AccelKind accelKind = onGpu ? AccelKind::Bvh : parseAccelKind(opt->accel);
+        const std::string accelName = accelKindName(accelKind);
         auto buildStart = std::chrono::steady_clock::now();
         Accel accel(scene, accelKind);
         double buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - buildStart).count();
         if (!opt->quiet)
             std::fprintf(stderr, "%s: %zu triangles, %zu spheres, %zu lights; %dx%d; %s built in %s\n",
                          opt->scene.c_str(), scene.triangles.size(), scene.spheres.size(), scene.lights.size(),
-                         scene.film.width, scene.film.height, opt->accel.c_str(),
+                         scene.film.width, scene.film.height, accelName.c_str(),
                          ProgressReporter::formatDuration(buildSeconds).c_str());
 
         const PathSettings settings = pathSettingsFrom(scene.integrator);
@@ -140,6 +170,37 @@ std::function<int()> addRenderCommand(CLI::App& app) {
         const int pixels = scene.film.width * scene.film.height;
         budget.samplesPerPass = opt->sppPerPass > 0 ? opt->sppPerPass : std::clamp((1 << 18) / pixels, 1, 16);
         budget.cancel = &gCancel;
+
+#ifdef CAUSTICA_WITH_CUDA
+        std::unique_ptr<GpuPathRenderer> gpu;
+        if (onGpu) {
+            const GpuPathMode mode = parseGpuPathMode(opt->gpuMode);
+            const GpuMemoryEstimate need =
+                estimateGpuMemory(gpuRenderSizes(scene, *accel.bvh(), budget.samplesPerPass, mode));
+            size_t freeBytes = 0, totalBytes = 0;
+            cudaMemoryInfo(freeBytes, totalBytes);
+            const std::string gpuName = cudaDeviceDescription();
+            if (!opt->quiet) {
+                std::fprintf(stderr, "device: cuda, %s; gpu-mode %s\n", gpuName.c_str(), gpuPathModeName(mode));
+                std::fprintf(stderr,
+                             "GPU memory needed: about %s (scene %s, BVH %s, path state %s for %zu paths, "
+                             "sample pass %s, scratch %s); free %s of %s\n",
+                             formatBytes(need.total()).c_str(), formatBytes(need.scene).c_str(),
+                             formatBytes(need.bvh).c_str(), formatBytes(need.pathState).c_str(),
+                             need.pathsInFlight, formatBytes(need.samplePass).c_str(),
+                             formatBytes(need.scratch).c_str(), formatBytes(freeBytes).c_str(),
+                             formatBytes(totalBytes).c_str());
+            }
+            if (need.total() > freeBytes)
+                throw Error("GPU memory: the render needs about " + formatBytes(need.total()) + " but only " +
+                            formatBytes(freeBytes) + " is free on " + gpuName +
+                            "; lower --res or --spp-per-pass, or use --device cpu");
+            resetCudaPeakBytes();
+            gpu = std::make_unique<GpuPathRenderer>(scene, *accel.bvh(), settings, mode, budget.samplesPerPass);
+        }
+#endif
+        if (!onGpu && !opt->quiet)
+            std::fprintf(stderr, "device: cpu; path-mode %s\n", opt->pathMode.c_str());
         std::signal(SIGINT, onInterrupt);
         std::signal(SIGTERM, onInterrupt);
 
@@ -147,7 +208,7 @@ std::function<int()> addRenderCommand(CLI::App& app) {
         if (!opt->quiet)
             progress = std::make_unique<ProgressReporter>("render", sppTarget > 0 ? sppTarget : 0, opt->time);
         double lastCheckpoint = 0;
-        OutputInfo info{opt->scene, "path", opt->accel, opt->seed};
+        OutputInfo info{opt->scene, "path", accelName, opt->seed};
         auto passDone = [&](const Film& f, const RenderStats& stats) {
             if (progress) progress->update(double(f.samplesPerPixel()));
             if (opt->checkpointEvery > 0 && stats.seconds - lastCheckpoint >= opt->checkpointEvery) {
@@ -157,7 +218,10 @@ std::function<int()> addRenderCommand(CLI::App& app) {
             }
         };
         const bool wavefront = opt->pathMode == "wavefront";
-        auto renderPass = [&](int first, int k, SamplePass& pass) {
+        auto renderPass = [&](int first, int k, SamplePass& pass) -> uint64_t {
+#ifdef CAUSTICA_WITH_CUDA
+            if (gpu) return gpu->renderPass(opt->seed, first, pass);
+#endif
             if (wavefront)
                 return renderPathPassWavefront(scene, accel, settings, opt->seed, first, pass);
             return renderPathPass(scene, accel, settings, opt->seed, first, pass);
@@ -174,6 +238,14 @@ std::function<int()> addRenderCommand(CLI::App& app) {
             std::filesystem::remove(checkpoint);
         }
         printSummary(stats, stdout);
+#ifdef CAUSTICA_WITH_CUDA
+        if (gpu) {
+            gpu.reset();
+            std::printf("GPU memory: peak %s allocated\n", formatBytes(cudaMemoryCounters().peak).c_str());
+        }
+#endif
+        if (opt->kernelStats) std::printf("kernel statistics (%s):\n%s", deviceName(device),
+                                          KernelStats::global().table().c_str());
         if (!opt->statsJson.empty()) writeStatsJson(opt->statsJson, stats, info, buildSeconds);
         return stats.cancelled ? 130 : 0;
     };

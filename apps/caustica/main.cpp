@@ -4,8 +4,14 @@
 
 #include "commands.h"
 #include "caustica/util/error.h"
+#ifdef CAUSTICA_WITH_CUDA
+#include "cuda/cuda_backend.h"
+#endif
 
 int main(int argc, char** argv) {
+#ifdef CAUSTICA_WITH_CUDA
+    caustica::registerCudaBackend();  // installs the GPU backend's function table; touches no GPU
+#endif
     CLI::App app{"caustica — a physically based light-transport renderer for the hard light"};
     app.require_subcommand(1);
     app.set_version_flag("--version", "caustica 0.1.0");

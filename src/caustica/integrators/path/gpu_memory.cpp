@@ -1,0 +1,92 @@
+#include "caustica/integrators/path/gpu_memory.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "caustica/accel/bvh.h"
+#include "caustica/film/film.h"
+#include "caustica/integrators/path/path_kernel.h"
+#include "caustica/scene/scene.h"
+#include "caustica/util/error.h"
+#include "caustica/util/rng.h"
+
+namespace caustica {
+
+GpuPathMode parseGpuPathMode(const std::string& name) {
+    if (name == "megakernel") return GpuPathMode::Megakernel;
+    if (name == "wavefront") return GpuPathMode::Wavefront;
+    throw Error("unknown GPU path mode '" + name + "' (expected megakernel or wavefront)");
+}
+
+const char* gpuPathModeName(GpuPathMode mode) {
+    return mode == GpuPathMode::Wavefront ? "wavefront" : "megakernel";
+}
+
+size_t gpuWavefrontBytesPerPath() {
+    return sizeof(PathState) + sizeof(IndependentSampler) + sizeof(Hit) + sizeof(ShadowRay) +
+           6 * sizeof(uint32_t);
+}
+
+GpuMemoryEstimate estimateGpuMemory(const GpuRenderSizes& s) {
+    GpuMemoryEstimate e;
+    e.scene = s.positions * sizeof(Vec3f) + s.normals * sizeof(Vec3f) + s.uvs * sizeof(Vec2f) +
+              s.triangles * sizeof(Vec3u) + s.triangleShape * sizeof(uint32_t) +
+              s.spheres * sizeof(Sphere) + s.shapes * sizeof(Shape) + s.bsdfs * sizeof(Bsdf) +
+              s.lights * sizeof(Light) + s.lightCdf * sizeof(float);
+    e.bvh = s.bvhNodes * sizeof(BvhNode) + s.bvhPrimIndices * sizeof(uint32_t) +
+            s.bvhPrims * sizeof(BvhPrimitive);
+    const size_t samples = size_t(std::max(s.width, 0)) * size_t(std::max(s.height, 0)) *
+                           size_t(std::max(s.samplesPerPass, 0));
+    e.samplePass = samples * sizeof(PixelSample);
+    if (s.mode == GpuPathMode::Wavefront) {
+        e.pathsInFlight = std::min(samples, std::max<size_t>(s.maxPathsInFlight, 1));
+        e.pathState = e.pathsInFlight * gpuWavefrontBytesPerPath();
+        // CUB's DeviceSelect temporaries are far below one word per element; plus its counter.
+        e.scratch = e.pathsInFlight * sizeof(uint32_t) + (size_t(1) << 20);
+    } else {
+        e.pathsInFlight = samples;                    // one thread per (pixel, sample)
+        e.pathState = samples * sizeof(uint32_t);     // per-sample ray counters
+        e.scratch = 0;
+    }
+    return e;
+}
+
+GpuRenderSizes gpuRenderSizes(const Scene& scene, const Bvh& bvh, int samplesPerPass,
+                              GpuPathMode mode, size_t maxPathsInFlight) {
+    GpuRenderSizes s;
+    s.positions = scene.positions.size();
+    s.normals = scene.normals.size();
+    s.uvs = scene.uvs.size();
+    s.triangles = scene.triangles.size();
+    s.triangleShape = scene.triangleShape.size();
+    s.spheres = scene.spheres.size();
+    s.shapes = scene.shapes.size();
+    s.bsdfs = scene.bsdfs.size();
+    s.lights = scene.lights.size();
+    s.lightCdf = scene.lightCdf.size();
+    s.bvhNodes = bvh.nodes.size();
+    s.bvhPrimIndices = bvh.primIndices.size();
+    s.bvhPrims = bvh.prims.size();
+    s.width = scene.film.width;
+    s.height = scene.film.height;
+    s.samplesPerPass = samplesPerPass;
+    s.mode = mode;
+    s.maxPathsInFlight = maxPathsInFlight;
+    return s;
+}
+
+std::string formatBytes(size_t bytes) {
+    char text[32];
+    const double b = double(bytes);
+    if (b >= double(size_t(1) << 30))
+        std::snprintf(text, sizeof text, "%.2f GiB", b / double(size_t(1) << 30));
+    else if (b >= double(size_t(1) << 20))
+        std::snprintf(text, sizeof text, "%.1f MiB", b / double(size_t(1) << 20));
+    else if (b >= 1024.0)
+        std::snprintf(text, sizeof text, "%.1f KiB", b / 1024.0);
+    else
+        std::snprintf(text, sizeof text, "%zu B", bytes);
+    return text;
+}
+
+}  // namespace caustica

@@ -1,4 +1,5 @@
-// bench_rays.cpp — single-threaded ray throughput: the own BVH against Embree on the same rays.
+// bench_rays.cpp — single-threaded ray throughput: the own BVH's traversals (full stack, short
+// stack, stackless) against Embree on the same rays.
 //
 // Ray sets, precomputed once per scene and shared by both backends:
 //   camera  one primary ray per pixel centre (closest hit)
@@ -8,7 +9,8 @@
 // scenes/cornell-water/scene.xml when it loads (skipped with the reason printed otherwise).
 //
 //   bench_rays [--benchmark_filter=...] [--benchmark_repetitions=N]
-// ends with a table: scene, ray type, BVH Mrays/s, Embree Mrays/s, BVH / Embree.
+// ends with a table: scene, ray type, Mrays/s of each BVH traversal and of Embree, and the
+// ratios of the short-stack and stackless rates to the full-stack one.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -197,14 +199,21 @@ void registerScene(const BenchScene& b) {
     for (const auto& [type, rays] : sets) {
         const bool anyHit = std::string(type) == "shadow";
         const std::string prefix = "rays/" + b.name + "/" + type + "/";
-        benchmark::RegisterBenchmark(
-            (prefix + "bvh").c_str(),
-            [&b, rays, anyHit](auto& st) {
-                traceRays(st, BvhIntersector{b.bvh.view(), b.scene.view()}, *rays, anyHit);
-            })
-            ->Unit(benchmark::kMillisecond)
-            ->MinTime(1.0)
-            ->ComputeStatistics("max", maxOf);
+        auto add = [&](const std::string& name, auto intersector) {
+            benchmark::RegisterBenchmark((prefix + name).c_str(),
+                                         [&b, rays, anyHit, intersector](auto& st) {
+                                             auto it = intersector;
+                                             it.bvh = b.bvh.view();
+                                             it.scene = b.scene.view();
+                                             traceRays(st, it, *rays, anyHit);
+                                         })
+                ->Unit(benchmark::kMillisecond)
+                ->MinTime(1.0)
+                ->ComputeStatistics("max", maxOf);
+        };
+        add("bvh", BvhIntersectorT<BvhTraversal::Stack>{});
+        add("bvh-short", BvhIntersectorT<BvhTraversal::ShortStack>{});
+        add("bvh-stackless", BvhIntersectorT<BvhTraversal::Stackless>{});
         benchmark::RegisterBenchmark(
             (prefix + "embree").c_str(),
             [&b, rays, anyHit](auto& st) { traceRays(st, b.embree->intersector(), *rays, anyHit); })
@@ -293,16 +302,32 @@ int main(int argc, char** argv) {
     TableReporter reporter;
     benchmark::RunSpecifiedBenchmarks(&reporter);
 
-    std::printf("\n%-16s %-8s %13s %16s %8s\n", "scene", "rays", "BVH Mrays/s", "Embree Mrays/s",
-                "ratio");
+    std::printf("\n%-16s %-8s %9s %9s %9s %9s %7s %7s %7s\n", "scene", "rays", "stack", "short",
+                "stackless", "Embree", "short/", "sless/", "stack/");
+    std::printf("%-16s %-8s %9s %9s %9s %9s %7s %7s %7s\n", "", "", "Mrays/s", "Mrays/s", "Mrays/s",
+                "Mrays/s", "stack", "stack", "Embree");
     for (const auto& b : gScenes)
         for (const char* type : {"camera", "bounce", "shadow"}) {
             const std::string prefix = "rays/" + b->name + "/" + type + "/";
-            const double bvh = reporter.rate(prefix + "bvh"),
+            const double stack = reporter.rate(prefix + "bvh"),
+                         shortStack = reporter.rate(prefix + "bvh-short"),
+                         stackless = reporter.rate(prefix + "bvh-stackless"),
                          emb = reporter.rate(prefix + "embree");
-            if (bvh < 0 || emb < 0) continue;
-            std::printf("%-16s %-8s %13.2f %16.2f %8.2f\n", b->name.c_str(), type, bvh * 1e-6,
-                        emb * 1e-6, bvh / emb);
+            if (stack < 0 && shortStack < 0 && stackless < 0 && emb < 0) continue;
+            // "-" for what did not run (--benchmark_filter).
+            auto fixed2 = [](double v) {
+                char buf[32];
+                std::snprintf(buf, sizeof buf, "%.2f", v);
+                return std::string(buf);
+            };
+            auto rate = [&](double v) { return v < 0 ? std::string("-") : fixed2(v * 1e-6); };
+            auto ratio = [&](double a, double b2) {
+                return a < 0 || b2 < 0 ? std::string("-") : fixed2(a / b2);
+            };
+            std::printf("%-16s %-8s %9s %9s %9s %9s %7s %7s %7s\n", b->name.c_str(), type,
+                        rate(stack).c_str(), rate(shortStack).c_str(), rate(stackless).c_str(),
+                        rate(emb).c_str(), ratio(shortStack, stack).c_str(),
+                        ratio(stackless, stack).c_str(), ratio(stack, emb).c_str());
         }
     benchmark::Shutdown();
     return 0;

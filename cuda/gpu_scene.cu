@@ -33,6 +33,7 @@ GpuScene::GpuScene(const Scene& scene, const Bvh& bvh) {
     bvhView_.nodes = upload(nodes_, bvh.nodes, bytes_);
     bvhView_.primIndices = upload(primIndices_, bvh.primIndices, bytes_);
     bvhView_.prims = upload(prims_, bvh.prims, bytes_);
+    bvhView_.parents = upload(parents_, bvh.parents, bytes_);  // for the short-stack and stackless traversals
 }
 
 }  // namespace caustica

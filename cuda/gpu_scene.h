@@ -42,6 +42,7 @@ private:
     Buffer<BvhNode> nodes_;
     Buffer<uint32_t> primIndices_;
     Buffer<BvhPrimitive> prims_;
+    Buffer<uint32_t> parents_;
     SceneView view_;
     BvhView bvhView_;
     size_t bytes_ = 0;

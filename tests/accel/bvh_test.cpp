@@ -13,35 +13,71 @@
 namespace caustica {
 namespace {
 
-/// Casts `numRays` random rays and requires the BVH to agree with brute force exactly: same hit or
-/// miss, same t bit for bit; a different primId only when it is hit at the very same t (a tie).
+/// One traversal variant under test.
+struct Variant {
+    const char* name;
+    bool (*intersect)(const BvhView&, const SceneView&, const Ray&, Hit&);
+    bool (*occluded)(const BvhView&, const SceneView&, const Ray&);
+};
+
+template <BvhTraversal T, int N = kBvhShortStackSize>
+Variant variant(const char* name) {
+    return Variant{name, &bvhIntersect<T, N>, &bvhOccluded<T, N>};
+}
+
+/// Every traversal, including short stacks of 1 and 2 entries, which lose entries (and so
+/// backtrack through the parent links) whenever more than 1 or 2 subtrees are pending, and the
+/// stackless one, which backtracks wherever a node has two or more children hit.
+std::vector<Variant> allVariants() {
+    return {variant<BvhTraversal::Stack>("Stack"),
+            variant<BvhTraversal::ShortStack>("ShortStack8"),
+            variant<BvhTraversal::ShortStack, 4>("ShortStack4"),
+            variant<BvhTraversal::ShortStack, 2>("ShortStack2"),
+            variant<BvhTraversal::ShortStack, 1>("ShortStack1"),
+            variant<BvhTraversal::Stackless>("Stackless")};
+}
+
+/// Casts `numRays` random rays and requires every traversal of the BVH to agree with brute force
+/// exactly: same hit or miss, same t bit for bit; a different primId only when it is hit at the
+/// very same t (a tie). Occlusion must match too.
 void expectMatchesBruteForce(const Scene& scene, const BvhBuildOptions& options, uint32_t numRays,
                              uint64_t seed) {
     const Bvh bvh = buildBvh(scene, options);
     const SceneView view = scene.view();
     const BvhView bvhView = bvh.view();
-    uint32_t hits = 0;
-    for (const Ray& ray : test::makeRandomRays(scene, numRays, seed)) {
-        Hit ref, got;
-        const bool refHit = test::bruteForceIntersect(view, ray, ref);
-        const bool gotHit = bvhIntersect(bvhView, view, ray, got);
-        ASSERT_EQ(gotHit, refHit);
-        ASSERT_EQ(bvhOccluded(bvhView, view, ray), refHit);
-        if (!refHit) {
-            EXPECT_FALSE(got.valid());
-            continue;
-        }
-        ++hits;
-        ASSERT_EQ(got.t, ref.t);
-        if (got.primId != ref.primId) {
-            EXPECT_EQ(test::primitiveT(view, got.primId, ray), ref.t) << "not a tie";
-        } else {
-            EXPECT_EQ(got.b1, ref.b1);
-            EXPECT_EQ(got.b2, ref.b2);
-        }
+    if (options.parentLinks && !bvh.nodes.empty()) {
+        ASSERT_EQ(bvh.parents.size(), bvh.nodes.size());
     }
-    if (scene.numPrimitives() > 0) {
-        EXPECT_GT(hits, numRays / 10);  // the rays do test something
+    for (const Variant& v : allVariants()) {
+        SCOPED_TRACE(v.name);
+        uint32_t hits = 0;
+        for (const Ray& ray : test::makeRandomRays(scene, numRays, seed)) {
+            Hit ref, got;
+            const bool refHit = test::bruteForceIntersect(view, ray, ref);
+            const bool gotHit = v.intersect(bvhView, view, ray, got);
+            ASSERT_EQ(gotHit, refHit);
+            ASSERT_EQ(v.occluded(bvhView, view, ray), refHit);
+            if (!refHit) {
+                EXPECT_FALSE(got.valid());
+                continue;
+            }
+            ++hits;
+            ASSERT_EQ(got.t, ref.t);
+            // All variants test the leaves in the same order, so they agree with the stack
+            // traversal even on ties.
+            Hit stackHit;
+            ASSERT_TRUE(bvhIntersect(bvhView, view, ray, stackHit));
+            EXPECT_EQ(got.primId, stackHit.primId);
+            if (got.primId != ref.primId) {
+                EXPECT_EQ(test::primitiveT(view, got.primId, ray), ref.t) << "not a tie";
+            } else {
+                EXPECT_EQ(got.b1, ref.b1);
+                EXPECT_EQ(got.b2, ref.b2);
+            }
+        }
+        if (scene.numPrimitives() > 0) {
+            EXPECT_GT(hits, numRays / 10);  // the rays do test something
+        }
     }
 }
 
@@ -69,6 +105,21 @@ TEST_P(BvhVsBruteForce, SceneArraysAndOtherSettings) {
     options.maxLeafSize = 2;
     options.width = 3;
     expectMatchesBruteForce(test::makeRandomScene(GetParam().scene), options, 2000, 29);
+}
+
+TEST_P(BvhVsBruteForce, OneLeafPerPrimitiveBinary) {
+    // The deepest trees the builder makes: backtracking climbs through many levels.
+    BvhBuildOptions options;
+    options.width = 2;
+    options.maxLeafSize = 1;
+    expectMatchesBruteForce(test::makeRandomScene(GetParam().scene), options, 1000, 31);
+}
+
+TEST_P(BvhVsBruteForce, WithoutParentLinks) {
+    // The backtracking variants then find parents by descending from the root.
+    BvhBuildOptions options;
+    options.parentLinks = false;
+    expectMatchesBruteForce(test::makeRandomScene(GetParam().scene), options, 500, 37);
 }
 
 test::RandomSceneOptions sceneOf(uint32_t tris, uint32_t spheres, uint64_t seed) {
@@ -201,8 +252,8 @@ TEST(Bvh, StatisticsAndStructureAreConsistent) {
     EXPECT_LE(s.averageLeafSize, options.maxLeafSize);
     EXPECT_GT(s.sahCost, 1.0);
     EXPECT_LT(s.sahCost, double(n));  // far better than one big leaf
-    EXPECT_EQ(s.memoryBytes,
-              bvh.nodes.size() * sizeof(BvhNode) + n * sizeof(uint32_t) + n * sizeof(BvhPrimitive));
+    EXPECT_EQ(s.memoryBytes, bvh.nodes.size() * sizeof(BvhNode) + n * sizeof(uint32_t) +
+                                 n * sizeof(BvhPrimitive) + bvh.nodes.size() * sizeof(uint32_t));
     EXPECT_GE(s.buildMilliseconds, 0.0);
 
     // Every primitive exactly once; children inside parents; leaves bound their primitives.
@@ -215,6 +266,18 @@ TEST(Bvh, StatisticsAndStructureAreConsistent) {
     EXPECT_EQ(prims, n);
     EXPECT_EQ(nodes, s.nodeCount);  // every node reachable once
     for (uint32_t i = 0; i < n; ++i) EXPECT_EQ(bvh.prims[i].primId, bvh.primIndices[i]);
+
+    // Parent links: the root has none, every other node names the slot that points to it.
+    ASSERT_EQ(bvh.parents.size(), bvh.nodes.size());
+    EXPECT_EQ(bvh.parents[0], kBvhNoParent);
+    for (uint32_t i = 1; i < bvh.nodes.size(); ++i) {
+        const uint32_t parent = bvh.parents[i] >> 2, slot = bvh.parents[i] & 3u;
+        ASSERT_LT(parent, i);
+        const BvhNode& p = bvh.nodes[parent];
+        EXPECT_FALSE(p.isEmpty(int(slot)));
+        EXPECT_FALSE(p.isLeaf(int(slot)));
+        EXPECT_EQ(p.offset[slot], i);
+    }
 }
 
 TEST(Bvh, SinglePrimitiveRootIsALeafSlot) {

@@ -19,6 +19,10 @@ inline constexpr int kBvhMaxDepth = 62;
 /// Entries of the traversal stack. The builder guarantees that no traversal needs more (see
 /// BvhBuildOptions::width).
 inline constexpr int kBvhStackSize = 64;
+/// Default entries of the short stack of BvhTraversal::ShortStack (see bvh_traversal.h).
+inline constexpr int kBvhShortStackSize = 8;
+/// Value of Bvh::parents[0]: the root has no parent.
+inline constexpr uint32_t kBvhNoParent = ~0u;
 
 /// One node of the 4-wide BVH: the boxes and links of up to four children, 128 bytes (two cache
 /// lines, fetched together by the adjacent-line prefetcher). Boxes are stored axis by axis (SoA),
@@ -65,6 +69,10 @@ struct BvhView {
     Span<const BvhNode> nodes;
     Span<const uint32_t> primIndices;  // leaf order -> primitive id (triangles first, then spheres)
     Span<const BvhPrimitive> prims;    // leaf order, parallel to primIndices; optional
+    /// Parent links, parallel to nodes: (parent node << 2) | child slot, kBvhNoParent for the
+    /// root. Only the stackless and short-stack traversals read them; without them these find
+    /// a node's parent by descending from the root (correct, but one node fetch per level).
+    Span<const uint32_t> parents = {};
 };
 
 /// Builder settings. Costs are the SAH constants of MacDonald and Booth, "Heuristics for Ray
@@ -78,6 +86,8 @@ struct BvhBuildOptions {
     int width = 4;                     // children per node, 2..4. With 4, a tree whose traversal
                                        // could overflow the stack is rebuilt with 2 (never seen)
     bool precomputePrimitives = true;  // fill Bvh::prims (see BvhPrimitive)
+    bool parentLinks = true;           // fill Bvh::parents (4 bytes per node; for the stackless
+                                       // and short-stack traversals, see BvhTraversal)
 };
 
 /// Figures for `caustica info` and the tests.
@@ -90,7 +100,7 @@ struct BvhStats {
     double averageLeafSize = 0;  // primitives per leaf
     double sahCost = 0;          // expected cost of a random ray hitting the root box: node
                                  // visits * traversalCost + primitive tests * intersectionCost
-    size_t memoryBytes = 0;      // nodes + primIndices + prims
+    size_t memoryBytes = 0;      // nodes + primIndices + prims + parents
     double buildMilliseconds = 0;
 };
 
@@ -120,10 +130,12 @@ struct Bvh {
     std::vector<BvhNode, AlignedAllocator<BvhNode, 128>> nodes;
     std::vector<uint32_t> primIndices;
     std::vector<BvhPrimitive> prims;
+    std::vector<uint32_t> parents;  // see BvhView::parents; empty without options.parentLinks
     BvhStats stats;
 
     BvhView view() const {
-        return BvhView{Span<const BvhNode>(nodes.data(), nodes.size()), primIndices, prims};
+        return BvhView{Span<const BvhNode>(nodes.data(), nodes.size()), primIndices, prims,
+                       parents};
     }
 };
 

@@ -263,6 +263,18 @@ Bvh buildBvh(const Scene& scene, const BvhBuildOptions& options) {
         bvh.nodes.shrink_to_fit();
         root.reset();
 
+        // Links hold the node index in 30 bits; larger trees get none (their backtracking
+        // traversals then find parents by descending from the root, see bvh_traversal.h).
+        if (options.parentLinks && bvh.nodes.size() < (size_t(1) << 30)) {
+            bvh.parents.assign(bvh.nodes.size(), kBvhNoParent);
+            for (uint32_t i = 0; i < uint32_t(bvh.nodes.size()); ++i) {
+                const BvhNode& node = bvh.nodes[i];
+                for (int k = 0; k < BvhNode::kWidth; ++k)
+                    if (!node.isEmpty(k) && !node.isLeaf(k))
+                        bvh.parents[node.offset[k]] = (i << 2) | uint32_t(k);
+            }
+        }
+
         bvh.primIndices.resize(numPrims);
         for (uint32_t i = 0; i < numPrims; ++i) bvh.primIndices[i] = refs[i].id;
         if (options.precomputePrimitives) {
@@ -288,7 +300,7 @@ Bvh buildBvh(const Scene& scene, const BvhBuildOptions& options) {
     BvhStats& s = bvh.stats;
     s.averageLeafSize = s.leafCount ? double(numPrims) / s.leafCount : 0.0;
     s.memoryBytes = bvh.nodes.size() * sizeof(BvhNode) + bvh.primIndices.size() * sizeof(uint32_t) +
-                    bvh.prims.size() * sizeof(BvhPrimitive);
+                    bvh.prims.size() * sizeof(BvhPrimitive) + bvh.parents.size() * sizeof(uint32_t);
     s.buildMilliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return bvh;

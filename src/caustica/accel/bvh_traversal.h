@@ -5,6 +5,14 @@
 // their entry distances, so that they are skipped on pop when a closer hit has been found
 // meanwhile.
 //
+// Two more variants share the slab and leaf tests (BvhTraversal): a short-stack traversal, whose
+// stack is a small ring buffer that drops its oldest entries when full and, once it runs empty
+// after such a loss, continues by backtracking through parent links (Bvh::parents); and the
+// stackless traversal, the same with no stack at all. Both follow the parent-link scheme of Hapala
+// et al., "Efficient Stack-less BVH Traversal for Ray Tracing" (SCCG 2011), on 4-wide nodes as in
+// Afra and Szirmay-Kalos, "Stackless Multi-BVH Traversal for CPU, MIC and GPU Ray Tracing" (CGF
+// 33(1), 2014), with the children of a node visited in the same order as the stack traversal.
+//
 // Choices measured with bench/bench_rays.cpp (docs/PERFORMANCE.md): 4-wide nodes with SoA boxes
 // (1.3-1.7x faster than the binary layout they are collapsed from); the next node chosen with
 // branches rather than selects (a select makes the next fetch wait for the box tests); ordering by
@@ -155,24 +163,185 @@ CA_HD bool traverse(const BvhView& bvh, const SceneView& scene, const Ray& ray, 
     }
 }
 
+/// (parent node << 2) | slot of node `index` (kBvhNoParent for the root): bvh.parents[index], or,
+/// for a view without parent links, found by descending from the root. That relies on the
+/// depth-first node order: every subtree occupies a contiguous index range starting at its root,
+/// so the subtree holding `index` is the inner child with the largest offset <= index. It costs
+/// one node fetch per level, and keeps the backtracking traversals free of any stack.
+CA_HD_INLINE uint32_t parentLink(const BvhView& bvh, uint32_t index) {
+    if (!bvh.parents.empty()) return bvh.parents[index];
+    uint32_t node = 0;
+    while (index != 0) {
+        const BvhNode& n = bvh.nodes[node];
+        int slot = -1;
+        uint32_t child = 0;
+        for (int k = 0; k < BvhNode::kWidth; ++k)
+            if (!n.isEmpty(k) && !n.isLeaf(k) && n.offset[k] <= index &&
+                (slot < 0 || n.offset[k] > child)) {
+                slot = k;
+                child = n.offset[k];
+            }
+        if (slot < 0) break;  // not a node of this tree
+        if (child == index) return (node << 2) | uint32_t(slot);
+        node = child;
+    }
+    return kBvhNoParent;
+}
+
+/// Short-stack / stackless traversal (StackSize = 0), same contract as traverse(). Visits the same
+/// children in the same order as traverse(): the children of a node are taken in ascending (entry
+/// distance, slot) order, a strict total order that does not depend on the search limit, so a node
+/// can be re-entered after child slot k and continue exactly with the children that follow k
+/// (those culled meanwhile only ever had entry distances beyond the current limit). Needs no
+/// per-node data beyond the default layout; bvh.parents (built by default) makes each step up one
+/// memory access instead of a descent from the root (parentLink). The stack is a ring buffer of
+/// StackSize entries: a push onto a full stack overwrites the oldest (shallowest) entry, which is
+/// also the one that would have been popped last. When the stack runs empty after such a loss, the
+/// traversal goes back to the parent of the item it processed last and continues there after that
+/// item's slot, going up further through the parent links while a node has no child left.
+// GCC 12 cannot see that a stack entry is read only after it was written (`held` guards every
+// read) and warns about a 1-entry stack; nvcc's front end does not take this pragma.
+#if defined(__GNUC__) && !defined(__clang__) && !defined(__CUDACC__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
+template <bool AnyHit, int StackSize>
+CA_HD bool traverseShortStack(const BvhView& bvh, const SceneView& scene, const Ray& ray,
+                              Hit& best) {
+    static_assert(StackSize >= 0 && (StackSize & (StackSize - 1)) == 0,
+                  "the short stack holds 0 or a power of two entries");
+    if (bvh.nodes.empty()) return false;
+    const TraversalRay r(ray);
+    struct Entry {
+        uint32_t offset, count;
+        Float tNear;
+        uint32_t link;  // (parent node << 2) | slot of this child
+    };
+    Entry stack[StackSize > 0 ? StackSize : 1];
+    uint32_t top = 0;   // entries pushed minus popped; stack[(top - 1) % StackSize] is the top
+    int held = 0;       // entries actually held (<= StackSize)
+    bool lost = false;  // some entry was overwritten (or, stackless, never stored)
+    uint32_t offset = 0, count = 0;  // the item being processed: start at the root node
+    uint32_t link = kBvhNoParent;    // (parent << 2) | slot of the item processed last
+    int after = -1;                  // >= 0: node `offset` is re-entered after child slot `after`
+    bool found = false;
+    for (;;) {
+        if (count > 0) {
+            if (intersectLeaf<AnyHit>(bvh, scene, offset, count, ray, best)) {
+                if (AnyHit) return true;
+                found = true;
+            }
+        } else {
+            const BvhNode& node = bvh.nodes[offset];
+            Float tEntry[BvhNode::kWidth];
+            uint32_t mask = intersectChildren(node, r, best.t, tEntry);
+            if (after >= 0) {
+                // Re-entered: keep only the children that come after slot `after`.
+                const Float t0 = tEntry[after];
+                for (int k = 0; k < BvhNode::kWidth; ++k)
+                    if (!(tEntry[k] > t0 || (tEntry[k] == t0 && k > after))) mask &= ~(1u << k);
+                after = -1;
+            }
+            if (mask != 0) {
+                int order[BvhNode::kWidth];
+                int n = 0;
+                for (int k = 0; k < BvhNode::kWidth; ++k) {
+                    if (!(mask & (1u << k))) continue;
+                    int j = n++;
+                    for (; j > 0 && tEntry[order[j - 1]] > tEntry[k]; --j) order[j] = order[j - 1];
+                    order[j] = k;
+                }
+                for (int j = n - 1; j > 0; --j) {
+                    const int k = order[j];
+                    if constexpr (StackSize > 0) {
+                        stack[top++ % StackSize] = Entry{node.offset[k], node.count[k], tEntry[k],
+                                                         (offset << 2) | uint32_t(k)};
+                        if (held < StackSize)
+                            ++held;
+                        else
+                            lost = true;
+                    } else {
+                        lost = true;
+                    }
+                }
+                link = (offset << 2) | uint32_t(order[0]);
+                const int k = order[0];
+                count = node.count[k];
+                offset = node.offset[k];
+                continue;
+            }
+        }
+        // Pop the next subtree that may still hold a closer hit; culled entries count as done.
+        bool popped = false;
+        if constexpr (StackSize > 0) {
+            while (held > 0) {
+                const Entry& e = stack[--top % StackSize];
+                --held;
+                link = e.link;
+                if (AnyHit || e.tNear <= best.t) {
+                    offset = e.offset;
+                    count = e.count;
+                    popped = true;
+                    break;
+                }
+            }
+        }
+        if (popped) continue;
+        if (!lost || link == kBvhNoParent) return found;
+        // Backtrack: continue in the parent of the last item, after that item's slot.
+        offset = link >> 2;
+        after = int(link & 3u);
+        count = 0;
+        link = parentLink(bvh, offset);
+    }
+}
+#if defined(__GNUC__) && !defined(__clang__) && !defined(__CUDACC__)
+#pragma GCC diagnostic pop
+#endif
+
+}  // namespace bvh_detail
+
+/// Traversal algorithm of BvhIntersectorT, bvhIntersect and bvhOccluded. All give identical
+/// results (same hits, same t, same primitive on ties); they differ in speed and in memory per ray.
+enum class BvhTraversal {
+    Stack,       // full stack of kBvhStackSize entries (the default)
+    ShortStack,  // ring buffer of ShortStackSize entries + backtracking through Bvh::parents
+    Stackless,   // no stack: backtracking through Bvh::parents only (with either, a view
+                 // without parent links finds parents by descending from the root: slow)
+};
+
+namespace bvh_detail {
+template <BvhTraversal Traversal, int ShortStackSize, bool AnyHit>
+CA_HD_INLINE bool traverseWith(const BvhView& bvh, const SceneView& scene, const Ray& ray,
+                               Hit& best) {
+    if constexpr (Traversal == BvhTraversal::Stack) {
+        return traverse<AnyHit>(bvh, scene, ray, best);
+    } else {
+        constexpr int size = Traversal == BvhTraversal::Stackless ? 0 : ShortStackSize;
+        return traverseShortStack<AnyHit, size>(bvh, scene, ray, best);
+    }
+}
 }  // namespace bvh_detail
 
 /// Closest hit of `ray` with t in (0, ray.tMax). On a hit, fills `hit` (t, primId, b1, b2) and
 /// returns true; otherwise leaves `hit` unchanged.
+template <BvhTraversal Traversal = BvhTraversal::Stack, int ShortStackSize = kBvhShortStackSize>
 CA_HD_INLINE bool bvhIntersect(const BvhView& bvh, const SceneView& scene, const Ray& ray,
                                Hit& hit) {
     Hit best;
     best.t = ray.tMax;
-    if (!bvh_detail::traverse<false>(bvh, scene, ray, best)) return false;
+    if (!bvh_detail::traverseWith<Traversal, ShortStackSize, false>(bvh, scene, ray, best))
+        return false;
     hit = best;
     return true;
 }
 
 /// True if anything is hit with t in (0, ray.tMax) (shadow rays).
+template <BvhTraversal Traversal = BvhTraversal::Stack, int ShortStackSize = kBvhShortStackSize>
 CA_HD_INLINE bool bvhOccluded(const BvhView& bvh, const SceneView& scene, const Ray& ray) {
     Hit best;
     best.t = ray.tMax;
-    return bvh_detail::traverse<true>(bvh, scene, ray, best);
+    return bvh_detail::traverseWith<Traversal, ShortStackSize, true>(bvh, scene, ray, best);
 }
 
 }  // namespace caustica

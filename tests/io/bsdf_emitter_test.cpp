@@ -25,6 +25,21 @@ TEST(Bsdf, DiffuseAndTheDefault) {
     EXPECT_EQ(f.reflectance.r, 0.75f);
 }
 
+// Mitsuba 3 gives a shape with an area emitter and no BSDF a black diffuse BSDF (its Shape
+// constructor), not the 0.5 grey of other shapes.
+TEST(Bsdf, EmitterShapeDefaultIsBlack) {
+    TempDir dir;
+    const Scene s = loadScene(dir.write("e.xml", sceneXml(R"(
+        <shape type="rectangle"><emitter type="area"/></shape>
+        <shape type="rectangle"/>
+        <shape type="rectangle"><emitter type="area"/></shape>)")));
+    ASSERT_EQ(s.shapes.size(), 3u);
+    EXPECT_EQ(s.bsdfs[s.shapes[0].bsdf].type, BsdfType::Diffuse);
+    EXPECT_EQ(s.bsdfs[s.shapes[0].bsdf].reflectance.g, 0.0f);
+    EXPECT_EQ(s.bsdfs[s.shapes[1].bsdf].reflectance.g, 0.5f);
+    EXPECT_EQ(s.shapes[0].bsdf, s.shapes[2].bsdf);  // one shared record
+}
+
 TEST(Bsdf, DielectricIors) {
     Bsdf def = shapeBsdf(R"(<bsdf type="dielectric"/>)");
     EXPECT_EQ(def.type, BsdfType::Dielectric);
@@ -69,6 +84,75 @@ TEST(Bsdf, Conductors) {
     EXPECT_EQ(defAlpha.alphaU, 0.1f);
 }
 
+// Mitsuba 3's defaults: Beckmann roughness, named conductors as Mitsuba's own RGB eta/k.
+TEST(Bsdf, BeckmannDefaultAndNamedConductors) {
+    Bsdf beck = shapeBsdf(R"(<bsdf type="roughconductor"><float name="alpha" value="0.2"/></bsdf>)");
+    EXPECT_EQ(beck.distribution, MicrofacetType::Beckmann);
+    EXPECT_EQ(beck.alphaU, 0.2f);
+    Bsdf ggx = shapeBsdf(R"(<bsdf type="roughconductor"><string name="distribution" value="ggx"/></bsdf>)");
+    EXPECT_EQ(ggx.distribution, MicrofacetType::GGX);
+    Bsdf au = shapeBsdf(R"(<bsdf type="conductor"><string name="material" value="Au"/></bsdf>)");
+    EXPECT_NEAR(au.eta.r, 0.143036f, 1e-5f);  // mi.traverse of Mitsuba 3.9.1's conductor 'Au'
+    EXPECT_NEAR(au.eta.b, 1.44205f, 1e-5f);
+    EXPECT_NEAR(au.k.g, 2.38556f, 1e-5f);
+    Bsdf cu = shapeBsdf(R"(<bsdf type="roughconductor"><string name="material" value="Cu"/></bsdf>)");
+    EXPECT_GT(cu.k.r, 3.0f);
+    for (const char* m : {"a-C", "Ag", "Al", "AlAs", "AlSb", "Be", "Cr", "CsI", "Cu2O", "CuO", "d-C",
+                          "Hg", "HgTe", "Ir", "K", "Li", "MgO", "Mo", "Na_palik", "Nb", "Ni_palik",
+                          "Rh", "Se", "SiC", "SnTe", "Ta", "Te", "ThF4", "TiC", "TiN", "TiO2", "VC",
+                          "V_palik", "VN", "W"}) {
+        Bsdf b = shapeBsdf(std::string("<bsdf type=\"conductor\"><string name=\"material\" value=\"") +
+                           m + "\"/></bsdf>");
+        // (Mitsuba clamps out-of-gamut RGB to zero: AlSb's red eta and k are both 0.)
+        EXPECT_GT(b.eta.r + b.eta.g + b.eta.b + b.k.r + b.k.g + b.k.b, 0.0f) << m;
+    }
+}
+
+TEST(Bsdf, ThinDielectric) {
+    Bsdf def = shapeBsdf(R"(<bsdf type="thindielectric"/>)");
+    EXPECT_EQ(def.type, BsdfType::ThinDielectric);
+    EXPECT_NEAR(def.etaRatio, 1.5046f / 1.000277f, 1e-6f);
+    Bsdf t = shapeBsdf(R"(<bsdf type="thindielectric"><string name="int_ior" value="water"/>
+        <float name="ext_ior" value="1"/><rgb name="specular_transmittance" value="0.5, 0.6, 0.7"/>
+        <float name="specular_reflectance" value="0.8"/></bsdf>)");
+    EXPECT_NEAR(t.etaRatio, 1.333f, 1e-6f);
+    EXPECT_EQ(t.transmittance.b, 0.7f);
+    EXPECT_EQ(t.reflectance.r, 0.8f);
+}
+
+TEST(Bsdf, RoughDielectric) {
+    Bsdf def = shapeBsdf(R"(<bsdf type="roughdielectric"/>)");
+    EXPECT_EQ(def.type, BsdfType::RoughDielectric);
+    EXPECT_EQ(def.distribution, MicrofacetType::Beckmann);
+    EXPECT_EQ(def.alphaU, 0.1f);
+    EXPECT_NEAR(def.etaRatio, 1.5046f / 1.000277f, 1e-6f);
+    Bsdf g = shapeBsdf(R"(<bsdf type="roughdielectric"><string name="distribution" value="ggx"/>
+        <float name="alpha_u" value="0.2"/><float name="alpha_v" value="0.3"/>
+        <string name="int_ior" value="water"/><float name="specular_transmittance" value="0.5"/></bsdf>)");
+    EXPECT_EQ(g.distribution, MicrofacetType::GGX);
+    EXPECT_EQ(g.alphaV, 0.3f);
+    EXPECT_NEAR(g.etaRatio, 1.333f / 1.000277f, 1e-6f);
+    EXPECT_EQ(g.transmittance.g, 0.5f);
+}
+
+TEST(Bsdf, Plastic) {
+    Bsdf def = shapeBsdf(R"(<bsdf type="plastic"/>)");
+    EXPECT_EQ(def.type, BsdfType::Plastic);
+    EXPECT_NEAR(def.etaRatio, 1.49f / 1.000277f, 1e-6f);  // polypropylene / air
+    EXPECT_EQ(def.diffuse.g, 0.5f);
+    EXPECT_EQ(def.reflectance.g, 1.0f);
+    EXPECT_FALSE(def.nonlinear);
+    EXPECT_NEAR(def.specularWeight, 1 / 1.5f, 1e-6f);
+    Bsdf p = shapeBsdf(R"(<bsdf type="plastic"><float name="int_ior" value="1.9"/>
+        <string name="ext_ior" value="water"/><rgb name="diffuse_reflectance" value="0.1, 0.2, 0.3"/>
+        <float name="specular_reflectance" value="0.5"/><boolean name="nonlinear" value="true"/></bsdf>)");
+    EXPECT_NEAR(p.etaRatio, 1.9f / 1.333f, 1e-6f);
+    EXPECT_EQ(p.diffuse.b, 0.3f);
+    EXPECT_EQ(p.reflectance.r, 0.5f);
+    EXPECT_TRUE(p.nonlinear);
+    EXPECT_NEAR(p.specularWeight, 0.5f / 0.7f, 1e-6f);
+}
+
 TEST(Bsdf, TwoSidedChildren) {
     Scene s;
     Bsdf one = shapeBsdf(R"(<bsdf type="twosided"><bsdf type="conductor"/></bsdf>)", &s);
@@ -94,14 +178,15 @@ TEST(Bsdf, Refusals) {
             dir.write("b.xml", sceneXml("<shape type=\"rectangle\">\n" + bsdf + "\n</shape>"));
         expectError([&] { loadScene(path); }, "b.xml", line, reason);
     };
-    bad("<bsdf type=\"roughconductor\"/>", 4, "add <string name=\"distribution\" value=\"ggx\"/>");
-    bad("<bsdf type=\"roughconductor\">\n<string name=\"distribution\" value=\"beckmann\"/></bsdf>",
-        5, "'beckmann' is not supported yet; use value=\"ggx\"");
+    bad("<bsdf type=\"roughconductor\">\n<string name=\"distribution\" value=\"phong\"/></bsdf>",
+        5, "must be 'beckmann' or 'ggx', not 'phong'");
     bad("<bsdf type=\"roughconductor\">\n<string name=\"distribution\" value=\"ggx\"/>\n"
         "<float name=\"alpha\" value=\"0.1\"/><float name=\"alpha_u\" value=\"0.1\"/></bsdf>",
         4, "either 'alpha' or 'alpha_u'");
-    bad("<bsdf type=\"conductor\">\n<string name=\"material\" value=\"Au\"/></bsdf>", 5,
-        "measured conductor data ('Au'), which is not supported yet");
+    bad("<bsdf type=\"conductor\">\n<string name=\"material\" value=\"au\"/></bsdf>", 5,
+        "names an unknown conductor 'au' (known: a-C, Ag, Al,");
+    bad("<bsdf type=\"conductor\">\n<string name=\"material\" value=\"Au\"/>"
+        "<float name=\"eta\" value=\"1\"/></bsdf>", 5, "cannot be combined with 'eta'/'k'");
     bad("<bsdf type=\"dielectric\">\n<string name=\"int_ior\" value=\"glass\"/></bsdf>", 5,
         "unknown material 'glass'");
     bad("<bsdf type=\"dielectric\">\n<float name=\"int_ior\" value=\"-1\"/></bsdf>", 5,
@@ -109,9 +194,13 @@ TEST(Bsdf, Refusals) {
     bad("<bsdf type=\"twosided\"/>", 4, "needs one or two nested bsdfs, got 0");
     bad("<bsdf type=\"twosided\">\n<bsdf type=\"dielectric\"/></bsdf>", 5,
         "cannot wrap a transmissive bsdf");
-    bad("<bsdf type=\"plastic\"/>", 4,
-        "unsupported bsdf type 'plastic' (supported: conductor, "
-        "dielectric, diffuse, roughconductor, twosided)");
+    bad("<bsdf type=\"roughplastic\"/>", 4,
+        "unsupported bsdf type 'roughplastic' (supported: conductor, "
+        "dielectric, diffuse, plastic, roughconductor, roughdielectric, thindielectric, twosided)");
+    bad("<bsdf type=\"twosided\">\n<bsdf type=\"roughdielectric\"/></bsdf>", 5,
+        "cannot wrap a transmissive bsdf (roughdielectric)");
+    bad("<bsdf type=\"twosided\">\n<bsdf type=\"thindielectric\"/></bsdf>", 5,
+        "cannot wrap a transmissive bsdf (thindielectric)");
     bad("<bsdf type=\"diffuse\">\n<rgb name=\"reflectance\" value=\"-0.5\"/></bsdf>", 5,
         "must be finite and non-negative");
     bad("<bsdf type=\"diffuse\">\n<string name=\"reflectance\" value=\"red\"/></bsdf>", 5,

@@ -196,5 +196,47 @@ TEST(Dielectric, IndexMatchedOnlyRefracts) {
     EXPECT_NEAR(length(bs.wi + wo), 0.0f, 1e-6f);  // straight through
 }
 
+/// Mitsuba's thindielectric from either side: reflection with probability R = 2F / (1 + F)
+/// (binomial test), weight specular_reflectance; otherwise straight through (wi = -wo, η = 1),
+/// weight specular_transmittance; no smooth part.
+TEST(ThinDielectric, LobesAndWeights) {
+    const Spectrum r(0.9f, 0.8f, 0.7f), t(0.6f, 0.5f, 0.4f);
+    const std::vector<Bsdf> bsdfs{test::thinDielectric(1.5046f, r, t)};
+    EXPECT_TRUE(isDeltaBsdf(bsdfs, 0));
+    const SurfaceInteraction si = test::surfaceAt(Vec3f(0.1f, 0.2f, 1));
+    uint64_t seed = 400;
+    for (double theta : {0.0, 40.0, 80.0, 120.0, 175.0}) {
+        const Vec3f wo = test::directionDeg(Frame(si.ns), theta, 15);
+        const Float cosO = dot(wo, si.ns);
+        const Float f = fresnelDielectric(std::fabs(cosO), 1.5046f).r;
+        const Float reflect = 2 * f / (1 + f);
+        constexpr int kTrials = 100000;
+        int reflections = 0;
+        for (int i = 0; i < kTrials; ++i) {
+            IndependentSampler rng(uint64_t(i), 0, seed);
+            const Float uLobe = rng.get1D();
+            BsdfSample bs;
+            ASSERT_TRUE(sampleBsdf(bsdfs, 0, si, wo, uLobe, rng.get2D(), bs));
+            ASSERT_TRUE(bs.delta);
+            ASSERT_EQ(bs.eta, 1.0f);
+            if (dot(bs.wi, si.ns) * cosO > 0) {
+                ++reflections;
+                ASSERT_NEAR(length(bs.wi - (si.ns * (2 * cosO) - wo)), 0.0f, 1e-5f);
+                ASSERT_FLOAT_EQ(bs.pdf, reflect);
+                for (int c = 0; c < 3; ++c) ASSERT_FLOAT_EQ(bs.weight[c], r[c]);
+            } else {
+                ASSERT_NEAR(length(bs.wi + wo), 0.0f, 1e-6f);
+                ASSERT_FLOAT_EQ(bs.pdf, 1 - reflect);
+                for (int c = 0; c < 3; ++c) ASSERT_FLOAT_EQ(bs.weight[c], t[c]);
+            }
+            ASSERT_TRUE(evalBsdf(bsdfs, 0, si, wo, bs.wi).isBlack());
+            ASSERT_EQ(pdfBsdf(bsdfs, 0, si, wo, bs.wi), 0.0f);
+        }
+        ++seed;
+        const double p = test::binomialPValue(reflections, kTrials, reflect);
+        EXPECT_GE(p, test::kChi2Significance) << theta << ": " << reflections << " vs R = " << reflect;
+    }
+}
+
 }  // namespace
 }  // namespace caustica

@@ -17,6 +17,10 @@ namespace {
 
 constexpr int kSamples = 200000;
 
+/// Mitsuba's rational approximation of the Beckmann G1 (Walter et al. 2007, eq. 27) peaks at
+/// 1.00003 near a = 1.6 instead of 1: a Beckmann sample's weight F · G1 may exceed 1 by that.
+constexpr double kWeightTolerance = 1e-4;
+
 /// Mean and standard error of a sample.
 struct Estimate {
     double sum = 0, sumSq = 0;
@@ -31,6 +35,8 @@ struct EnergyCase {
     std::vector<Bsdf> bsdfs;
     uint32_t id = 0;
     bool uniformCheck = true;  // compare with uniform sampling (off for very peaked lobes)
+    bool weightBound = true;   // every sample's weight <= 1 (not so for plastic's diffuse lobe,
+                               // which carries the internal reflections: only its mean is bounded)
 };
 
 std::vector<EnergyCase> energyCases() {
@@ -40,6 +46,22 @@ std::vector<EnergyCase> energyCases() {
     c.push_back({"rough_a30", {test::roughConductor(0.3f, 0.3f)}});
     c.push_back({"rough_a80", {test::roughConductor(0.8f, 0.8f)}});
     c.push_back({"rough_aniso", {test::roughConductor(0.1f, 0.5f)}, 0, false});
+    c.push_back({"beckmann_a5", {test::beckmannConductor(0.05f, 0.05f)}, 0, false});
+    c.push_back({"beckmann_a30", {test::beckmannConductor(0.3f, 0.3f)}});
+    c.push_back({"beckmann_a80", {test::beckmannConductor(0.8f, 0.8f)}});
+    c.push_back({"beckmann_aniso", {test::beckmannConductor(0.1f, 0.5f)}, 0, false});
+    // Plastic: only the diffuse lobe is in evalBsdf, so no uniform comparison here (see
+    // PlasticAlbedo below). With a white base Mitsuba's model gains up to ~0.15% (its diffuse
+    // Fresnel reflectance is a fit): the base is 0.95 here.
+    c.push_back({"plastic", {test::plastic(1.49f, Spectrum(0.95f))}, 0, false, false});
+    c.push_back({"plastic_nonlinear", {test::plastic(1.5f, Spectrum(0.95f), Spectrum(1.f), true)}, 0,
+                 false, false});
+    c.push_back({"thindielectric", {test::thinDielectric(1.5046f)}, 0, false});  // delta only
+    // Radiance weights of refractions into the denser medium are below 1, out of it above 1
+    // (1/η²): the flux bound is RoughDielectricConservesFlux below. From outside only here.
+    c.push_back({"roughdielectric_beckmann", {test::roughDielectric(1.5046f, 0.3f, 0.3f)}, 0, true, false});
+    c.push_back({"roughdielectric_ggx",
+                 {test::roughDielectric(1.5046f, 0.6f, 0.6f, MicrofacetType::GGX)}, 0, true, false});
     EnergyCase two{"twosided", {}};
     two.id = test::addTwoSided(two.bsdfs, test::diffuse(Spectrum(1.f)),
                                test::roughConductor(0.3f, 0.3f));
@@ -75,7 +97,7 @@ TEST(BsdfEnergy, AlbedoAtMostOne) {
             }
             ++seed;
             // White parameters: no single sample may carry more than the incident energy.
-            EXPECT_LE(maxWeight, 1 + 1e-5) << at;
+            if (c.weightBound) EXPECT_LE(maxWeight, 1 + kWeightTolerance) << at;
             EXPECT_LE(sampled.mean(), 1 + z * sampled.stdErr() + 1e-6) << at;
             if (c.uniformCheck) {
                 const double se = std::sqrt(sqr(sampled.stdErr()) + sqr(uniform.stdErr()));
@@ -86,7 +108,77 @@ TEST(BsdfEnergy, AlbedoAtMostOne) {
                 EXPECT_NEAR(sampled.mean(), 1.0, 1e-6) << at;  // every weight is exactly 1
                 EXPECT_LE(std::fabs(uniform.mean() - 1), z * uniform.stdErr()) << at;
             }
+            if (c.name == "thindielectric") EXPECT_NEAR(sampled.mean(), 1.0, 1e-6) << at;
         }
+}
+
+// Plastic: the sampled albedo equals F(wo) · specular + the diffuse lobe's integral estimated
+// independently by uniform sampling of evalBsdf, and stays below 1 for white parameters.
+TEST(BsdfEnergy, PlasticAlbedo) {
+    const double z = test::normalUpperQuantile(test::kChi2Significance);
+    const SurfaceInteraction si = test::surfaceAt(Vec3f(0, 0, 1));
+    uint64_t seed = 5000;
+    for (bool nonlinear : {false, true})
+        for (double theta : {0.0, 45.0, 80.0}) {
+            const std::vector<Bsdf> b{test::plastic(1.6f, Spectrum(0.7f), Spectrum(0.9f), nonlinear)};
+            const Vec3f wo = test::directionDeg(Frame(si.ns), theta, 0);
+            const double fo = fresnelDielectric(wo.z, 1.6f).r;
+            Estimate sampled, uniform;
+            for (int i = 0; i < kSamples; ++i) {
+                IndependentSampler rng(uint64_t(i), 0, seed);
+                const Float uLobe = rng.get1D();
+                BsdfSample bs;
+                sampled.add(sampleBsdf(b, 0, si, wo, uLobe, rng.get2D(), bs) ? bs.weight.g : 0.0);
+                uniform.add(evalBsdf(b, 0, si, wo, sampleUniformSphere(rng.get2D())).g /
+                            uniformSpherePdf());
+            }
+            ++seed;
+            const double expected = 0.9 * fo + uniform.mean();
+            const double se = std::sqrt(sqr(sampled.stdErr()) + sqr(uniform.stdErr()));
+            EXPECT_LE(std::fabs(sampled.mean() - expected), z * se + 1e-6)
+                << theta << ": sampled " << sampled.mean() << " vs " << expected;
+            EXPECT_LT(sampled.mean(), 1.0) << theta;
+        }
+}
+
+// Rough dielectric, white, from both sides: every sample's flux weight (radiance weight times
+// η'²) is G1 <= 1, the mean flux is at most 1 and close to 1 for low roughness (single
+// scattering loses little), and the sampled radiance albedo matches uniform sampling of eval.
+TEST(BsdfEnergy, RoughDielectricConservesFlux) {
+    const double z = test::normalUpperQuantile(test::kChi2Significance);
+    const SurfaceInteraction si = test::surfaceAt(Vec3f(0, 0.2f, 1));
+    uint64_t seed = 6000;
+    for (MicrofacetType type : {MicrofacetType::Beckmann, MicrofacetType::GGX})
+        for (Float a : {0.05f, 0.5f})
+            for (double theta : {10.0, 60.0, 170.0, 130.0}) {
+                const std::vector<Bsdf> b{test::roughDielectric(1.5046f, a, a, type)};
+                const Vec3f wo = test::directionDeg(Frame(si.ns), theta, 40);
+                Estimate flux, radiance, uniform;
+                double maxFlux = 0;
+                for (int i = 0; i < kSamples; ++i) {
+                    IndependentSampler rng(uint64_t(i), 0, seed);
+                    const Float uLobe = rng.get1D();
+                    BsdfSample bs;
+                    const bool ok = sampleBsdf(b, 0, si, wo, uLobe, rng.get2D(), bs);
+                    const double fl = ok ? bs.weight.g * sqr(bs.eta) : 0.0;
+                    flux.add(fl);
+                    maxFlux = std::max(maxFlux, fl);
+                    radiance.add(ok ? bs.weight.g : 0.0);
+                    uniform.add(evalBsdf(b, 0, si, wo, sampleUniformSphere(rng.get2D())).g /
+                                uniformSpherePdf());
+                }
+                ++seed;
+                const std::string at = std::to_string(int(type)) + " a " + std::to_string(a) +
+                                       " at " + std::to_string(int(theta));
+                EXPECT_LE(maxFlux, 1 + kWeightTolerance) << at;
+                EXPECT_LE(flux.mean(), 1 + z * flux.stdErr() + 1e-6) << at;
+                if (a < 0.1f) EXPECT_GT(flux.mean(), 0.97) << at;
+                if (a > 0.1f) {  // uniform sampling cannot resolve the narrow lobe
+                    const double se = std::sqrt(sqr(radiance.stdErr()) + sqr(uniform.stdErr()));
+                    EXPECT_LE(std::fabs(radiance.mean() - uniform.mean()), z * se + 1e-6)
+                        << at << ": sampled " << radiance.mean() << " uniform " << uniform.mean();
+                }
+            }
 }
 
 // A smooth rough conductor loses little energy at normal incidence (single scattering): the

@@ -43,6 +43,19 @@ inline Bsdf roughConductor(Float au, Float av, Spectrum eta = Spectrum(0.f),
     return b;
 }
 
+/// A rough conductor with Mitsuba's default distribution, Beckmann.
+inline Bsdf beckmannConductor(Float au, Float av, Spectrum eta = Spectrum(0.f),
+                              Spectrum k = Spectrum(1.f), Spectrum r = Spectrum(1.f)) {
+    Bsdf b = roughConductor(au, av, eta, k, r);
+    b.distribution = MicrofacetType::Beckmann;
+    return b;
+}
+
+inline Bsdf plastic(Float etaRatio = 1.49f, Spectrum diffuse = Spectrum(0.5f),
+                    Spectrum specular = Spectrum(1.f), bool nonlinear = false) {
+    return makePlastic(etaRatio, diffuse, specular, nonlinear);
+}
+
 inline Bsdf conductor(Spectrum eta, Spectrum k, Spectrum r = Spectrum(1.f)) {
     Bsdf b;
     b.type = BsdfType::Conductor;
@@ -58,6 +71,23 @@ inline Bsdf dielectric(Float etaRatio, Spectrum r = Spectrum(1.f), Spectrum t = 
     b.etaRatio = etaRatio;
     b.reflectance = r;
     b.transmittance = t;
+    return b;
+}
+
+inline Bsdf roughDielectric(Float etaRatio, Float au, Float av,
+                            MicrofacetType type = MicrofacetType::Beckmann,
+                            Spectrum r = Spectrum(1.f), Spectrum t = Spectrum(1.f)) {
+    Bsdf b = dielectric(etaRatio, r, t);
+    b.type = BsdfType::RoughDielectric;
+    b.distribution = type;
+    b.alphaU = au;
+    b.alphaV = av;
+    return b;
+}
+
+inline Bsdf thinDielectric(Float etaRatio, Spectrum r = Spectrum(1.f), Spectrum t = Spectrum(1.f)) {
+    Bsdf b = dielectric(etaRatio, r, t);
+    b.type = BsdfType::ThinDielectric;
     return b;
 }
 

@@ -7,6 +7,7 @@
 #pragma once
 
 #include "caustica/scene/bsdf_data.h"
+#include "caustica/scene/bsdf_rough_dielectric.h"
 #include "caustica/scene/fresnel.h"
 #include "caustica/scene/interaction.h"
 #include "caustica/scene/microfacet.h"
@@ -43,13 +44,32 @@ CA_HD_INLINE Resolved resolve(Span<const Bsdf> bsdfs, uint32_t id, Float cosThet
 
 CA_HD_INLINE Vec3f flipZ(Vec3f v) { return {v.x, v.y, -v.z}; }
 
-CA_HD_INLINE GgxDistribution ggxOf(const Bsdf& b) { return {b.alphaU, b.alphaV}; }
+CA_HD_INLINE MicrofacetDistribution microfacetOf(const Bsdf& b) {
+    return {b.distribution, b.alphaU, b.alphaV};
+}
 
 /// Solid-angle pdf of sampling `wi` from `wo` by visible normals, via the half vector
 /// (Walter et al. 2007, eq. 14: the Jacobian of reflection is 1/(4 |wi·m|)).
-CA_HD_INLINE Float roughConductorPdf(const GgxDistribution& ggx, Vec3f wo, Vec3f wi, Vec3f m) {
+CA_HD_INLINE Float roughConductorPdf(const MicrofacetDistribution& md, Vec3f wo, Vec3f wi,
+                                     Vec3f m) {
     if (dot(wo, m) <= 0 || dot(wi, m) <= 0) return 0;
-    return ggx.D(m) * ggx.G1(wo, m) / (4 * wo.z);  // D_wo(m) / (4 wo·m)
+    return md.D(m) * md.G1(wo, m) / (4 * wo.z);  // D_wo(m) / (4 wo·m)
+}
+
+/// Mitsuba's plastic: probability of choosing the specular lobe for Fresnel reflectance fo of
+/// the viewing direction.
+CA_HD_INLINE Float plasticSpecularProb(const Bsdf& b, Float fo) {
+    const Float ps = fo * b.specularWeight, pd = (1 - fo) * (1 - b.specularWeight);
+    return ps + pd > 0 ? ps / (ps + pd) : b.specularWeight;
+}
+
+/// Mitsuba's plastic diffuse lobe, f · cosθi / (cosθi/π): the base's reflectance corrected for
+/// internal reflections at the coating, times the two Fresnel transmissions and 1/η² (radiance
+/// crossing the coating twice).
+CA_HD_INLINE Spectrum plasticDiffuse(const Bsdf& b, Float fo, Float fi) {
+    Spectrum d = b.diffuse;
+    for (int c = 0; c < 3; ++c) d[c] /= 1 - (b.nonlinear ? d[c] * b.fdrInt : b.fdrInt);
+    return d * ((1 - fo) * (1 - fi) / sqr(b.etaRatio));
 }
 
 /// f · cosθi of a non-twosided BSDF in its local frame; zero for delta lobes.
@@ -60,13 +80,21 @@ CA_HD_INLINE Spectrum evalLocal(const Bsdf& b, Vec3f wo, Vec3f wi) {
             return b.reflectance * (kInvPi * wi.z);
         case BsdfType::RoughConductor: {
             if (wo.z <= 0 || wi.z <= 0) return {};
-            const GgxDistribution ggx = ggxOf(b);
+            const MicrofacetDistribution md = microfacetOf(b);
             const Vec3f h = normalize(wo + wi);
-            const Float d = ggx.D(h);
+            const Float d = md.D(h);
             if (d == 0) return {};
             // Cook–Torrance: f = F D G / (4 cosθo cosθi) (Walter et al. 2007, eq. 20).
-            const Float dg = d * ggx.G(wo, wi, h) / (4 * wo.z);
+            const Float dg = d * md.G(wo, wi, h) / (4 * wo.z);
             return b.reflectance * fresnelConductor(dot(wo, h), b.eta, b.k) * dg;
+        }
+        case BsdfType::RoughDielectric:
+            return roughDielectricEval(b, wo, wi);
+        case BsdfType::Plastic: {
+            if (wo.z <= 0 || wi.z <= 0) return {};
+            const Float fo = fresnelDielectric(wo.z, b.etaRatio).r;
+            const Float fi = fresnelDielectric(wi.z, b.etaRatio).r;
+            return plasticDiffuse(b, fo, fi) * (kInvPi * wi.z);
         }
         default:
             return {};  // Dielectric, Conductor: delta only
@@ -81,7 +109,14 @@ CA_HD_INLINE Float pdfLocal(const Bsdf& b, Vec3f wo, Vec3f wi) {
             return cosineHemispherePdf(wi);
         case BsdfType::RoughConductor:
             if (wo.z <= 0 || wi.z <= 0) return 0;
-            return roughConductorPdf(ggxOf(b), wo, wi, normalize(wo + wi));
+            return roughConductorPdf(microfacetOf(b), wo, wi, normalize(wo + wi));
+        case BsdfType::RoughDielectric:
+            return roughDielectricPdf(b, wo, wi);
+        case BsdfType::Plastic: {
+            if (wo.z <= 0 || wi.z <= 0) return 0;
+            const Float fo = fresnelDielectric(wo.z, b.etaRatio).r;
+            return (1 - plasticSpecularProb(b, fo)) * cosineHemispherePdf(wi);
+        }
         default:
             return 0;
     }
@@ -126,15 +161,54 @@ CA_HD_INLINE bool sampleLocal(const Bsdf& b, Vec3f wo, Float uLobe, Vec2f u, Bsd
         }
         case BsdfType::RoughConductor: {
             if (wo.z <= 0) return false;
-            const GgxDistribution ggx = ggxOf(b);
-            const Vec3f m = ggx.sampleVisible(wo, u);
+            const MicrofacetDistribution md = microfacetOf(b);
+            const Vec3f m = md.sampleVisible(wo, u);
             out.wi = reflect(wo, m);
             if (out.wi.z <= 0) return false;
-            out.pdf = roughConductorPdf(ggx, wo, out.wi, m);
+            out.pdf = roughConductorPdf(md, wo, out.wi, m);
             if (!(out.pdf > 0)) return false;
             // f cosθi / pdf = F D G / (4 cosθo) / (D G1(wo) / (4 cosθo)) = F G1(wi)
             const Spectrum f = fresnelConductor(dot(wo, m), b.eta, b.k);
-            out.weight = b.reflectance * f * ggx.G1(out.wi, m);
+            out.weight = b.reflectance * f * md.G1(out.wi, m);
+            return true;
+        }
+        case BsdfType::RoughDielectric:
+            return roughDielectricSample(b, wo, uLobe, u, out.wi, out.weight, out.pdf, out.eta);
+        case BsdfType::ThinDielectric: {
+            // Mitsuba's thindielectric: a pane whose two interfaces reflect R = F + T²F/(1 - F²)
+            // in total, R = 2F / (1 + F) (the internal reflections summed); the rest passes
+            // straight through (no refraction: the pane is thin). Works from both sides.
+            const Float f = fresnelDielectric(std::fabs(wo.z), b.etaRatio).r;
+            const Float r = f * 2 / (1 + f);
+            out.delta = true;
+            if (uLobe <= r) {
+                out.wi = reflectLocal(wo);
+                out.pdf = r;
+                out.weight = b.reflectance;
+            } else {
+                out.wi = -wo;
+                out.pdf = 1 - r;
+                out.weight = b.transmittance;
+            }
+            return out.pdf > 0;
+        }
+        case BsdfType::Plastic: {
+            // Mitsuba's plastic: the specular lobe with probability ∝ F(wo) · specularWeight.
+            if (wo.z <= 0) return false;
+            const Float fo = fresnelDielectric(wo.z, b.etaRatio).r;
+            const Float pSpec = plasticSpecularProb(b, fo);
+            if (uLobe < pSpec) {
+                out.wi = reflectLocal(wo);
+                out.pdf = pSpec;
+                out.delta = true;
+                out.weight = b.reflectance * (fo / pSpec);
+                return pSpec > 0;
+            }
+            out.wi = sampleCosineHemisphere(u);
+            out.pdf = (1 - pSpec) * cosineHemispherePdf(out.wi);
+            if (!(out.pdf > 0) || out.wi.z <= 0) return false;
+            const Float fi = fresnelDielectric(out.wi.z, b.etaRatio).r;
+            out.weight = plasticDiffuse(b, fo, fi) * (1 / (1 - pSpec));
             return true;
         }
         default:
@@ -143,7 +217,8 @@ CA_HD_INLINE bool sampleLocal(const Bsdf& b, Vec3f wo, Float uLobe, Vec2f u, Bsd
 }
 
 CA_HD_INLINE bool isDeltaLocal(const Bsdf& b) {
-    return b.type == BsdfType::Dielectric || b.type == BsdfType::Conductor;
+    return b.type == BsdfType::Dielectric || b.type == BsdfType::Conductor ||
+           b.type == BsdfType::ThinDielectric;
 }
 
 /// A direction pair in the shading frame, mirrored to the front for the back of a twosided BSDF,
@@ -193,6 +268,39 @@ CA_HD_INLINE bool sampleBsdf(Span<const Bsdf> bsdfs, uint32_t id, const SurfaceI
     if (r.flip) out.wi = bsdf_detail::flipZ(out.wi);
     out.wi = frame.toWorld(out.wi);
     return true;
+}
+
+/// Mitsuba's diffuse Fresnel reflectance (fresnel_diffuse_reflectance): the fraction of a
+/// uniform (cosine-weighted) radiance distribution reflected by a smooth interface of relative
+/// IOR eta, by the fits of Egan and Hilgeman 1973 (eta < 1) and d'Eon and Irving 2011.
+CA_HD_INLINE Float fresnelDiffuseReflectance(Float eta) {
+    if (eta < 1) {
+        const Float invEta = 1 / eta;
+        return Float(0.0636) * invEta + eta * (eta * Float(-1.4399) + Float(0.7099)) +
+               Float(0.6681);
+    }
+    const Float x = 1 / eta;  // Horner in 1/eta
+    return Float(0.919317) +
+           x * (Float(-3.4793) +
+                x * (Float(6.75335) +
+                     x * (Float(-7.80989) + x * (Float(4.98554) + x * Float(-1.36881)))));
+}
+
+/// A plastic record with Mitsuba's precomputed terms: the coating's internal diffuse Fresnel
+/// reflectance and the specular sampling weight mean(specular) / (mean(diffuse) + mean(specular)).
+CA_HD_INLINE Bsdf makePlastic(Float etaRatio, Spectrum diffuse, Spectrum specular,
+                              bool nonlinear) {
+    Bsdf b;
+    b.type = BsdfType::Plastic;
+    b.etaRatio = etaRatio;
+    b.diffuse = diffuse;
+    b.reflectance = specular;
+    b.nonlinear = nonlinear;
+    b.fdrInt = fresnelDiffuseReflectance(1 / etaRatio);
+    const Float dMean = (diffuse.r + diffuse.g + diffuse.b) / 3;
+    const Float sMean = (specular.r + specular.g + specular.b) / 3;
+    b.specularWeight = dMean + sMean > 0 ? sMean / (dMean + sMean) : Float(0.5);
+    return b;
 }
 
 /// True when the BSDF has no non-delta component (next-event estimation is pointless).

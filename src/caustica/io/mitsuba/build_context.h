@@ -24,8 +24,9 @@ public:
     /// Index of the BSDF built from `object`, building it (and its children) on first use, so
     /// that a referenced BSDF is one record however many shapes use it.
     uint32_t bsdf(int object);
-    /// Mitsuba's BSDF for shapes without one: diffuse, reflectance 0.5 (created once).
-    uint32_t defaultBsdf();
+    /// Mitsuba's BSDF for shapes without one (created once each): diffuse, reflectance 0.5, or
+    /// reflectance 0 for a shape with an area emitter (as Mitsuba 3's Shape constructor does).
+    uint32_t defaultBsdf(bool emitter = false);
     /// `file` relative to the XML file that declared `object` (absolute paths unchanged).
     std::string resolvePath(const ObjectEntity& object, const std::string& file) const;
 
@@ -34,7 +35,7 @@ public:
 private:
     std::map<int, uint32_t> bsdfIndex_;
     std::set<int> inProgress_;
-    int64_t defaultBsdf_ = -1;
+    int64_t defaultBsdf_ = -1, defaultEmitterBsdf_ = -1;
 };
 
 /// The category builders. Each reads its entity through Params and appends to ctx.scene.

@@ -189,7 +189,8 @@ void buildShape(BuildContext& ctx, int object) {
     const uint32_t shapeIndex = uint32_t(ctx.scene.shapes.size());
     Shape s = appendGeometry(p, ctx.scene, g, shapeIndex);
     s.flipNormals = flip != g.mirrored;
-    s.bsdf = bsdfs.empty() ? ctx.defaultBsdf() : ctx.bsdf(bsdfs[0]);
+    // Mitsuba 3 gives an emitting shape without a BSDF a black diffuse one.
+    s.bsdf = bsdfs.empty() ? ctx.defaultBsdf(!emitters.empty()) : ctx.bsdf(bsdfs[0]);
     ctx.scene.shapes.push_back(s);
     if (!emitters.empty()) buildEmitter(ctx, emitters[0], int32_t(shapeIndex));
 }

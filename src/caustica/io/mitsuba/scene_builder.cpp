@@ -27,15 +27,16 @@ uint32_t BuildContext::bsdf(int object) {
     return index;
 }
 
-uint32_t BuildContext::defaultBsdf() {
-    if (defaultBsdf_ < 0) {
-        defaultBsdf_ = int64_t(scene.bsdfs.size());
+uint32_t BuildContext::defaultBsdf(bool emitter) {
+    int64_t& index = emitter ? defaultEmitterBsdf_ : defaultBsdf_;
+    if (index < 0) {
+        index = int64_t(scene.bsdfs.size());
         Bsdf b;
         b.type = BsdfType::Diffuse;
-        b.reflectance = Spectrum(0.5f);
+        b.reflectance = Spectrum(emitter ? 0.0f : 0.5f);
         scene.bsdfs.push_back(b);
     }
-    return uint32_t(defaultBsdf_);
+    return uint32_t(index);
 }
 
 std::string BuildContext::resolvePath(const ObjectEntity& object, const std::string& file) const {

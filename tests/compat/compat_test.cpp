@@ -1,0 +1,75 @@
+// Compatibility with Mitsuba 3, one plugin at a time: small scenes (tests/compat/scenes) rendered
+// by caustica and compared with Mitsuba 3 references (scalar_rgb, mean and variance of 16
+// independent batches, scripts/make_compat_references.py) by the statistics of the end-to-end
+// reference tests (tests/common/image_stats.h). Each scene is also rendered with one parameter
+// changed slightly (through its <default>s), which the same statistics must reject: the tests
+// can fail.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <string>
+
+#include "caustica/io/image_io.h"
+#include "common/image_stats.h"
+#include "e2e/render_helpers.h"
+
+namespace caustica::test {
+namespace {
+
+constexpr int kRuns = 16, kSppPerRun = 256;
+
+ReferenceComparison compareScene(const std::string& name,
+                                 const std::map<std::string, std::string>& defines = {}) {
+    const std::string ref = sourcePath("tests/compat/reference/" + name);
+    if (!std::filesystem::exists(ref + ".exr")) {
+        ADD_FAILURE() << "missing reference " << ref << ".exr";
+        return {};
+    }
+    const Image mean = readImage(ref + ".exr"), var = readImage(ref + ".var.exr");
+    const double refSpp = referenceSpp(ref + ".json");
+    EXPECT_GT(refSpp, 0);
+    Scene scene = loadScene(sourcePath("tests/compat/scenes/" + name + ".xml"), defines);
+    RenderEnsemble ours = renderEnsemble(scene, kRuns, kSppPerRun);
+    EXPECT_EQ(ours.mean.rgb.size(), mean.rgb.size());
+    if (ours.mean.rgb.size() != mean.rgb.size()) return {};
+    const ReferenceComparison r = compareToReference(ours, mean, var, refSpp, kRuns, kSppPerRun);
+    std::string d;
+    for (const auto& [k, v] : defines) d += " " + k + "=" + v;
+    std::printf("compat %s%s: %s\n", name.c_str(), d.c_str(), r.describe().c_str());
+    return r;
+}
+
+/// The scene matches its reference; with `wrong` defines it must not.
+void checkPlugin(const std::string& name, const std::map<std::string, std::string>& wrong) {
+    expectMatches(compareScene(name));
+    const ReferenceComparison bad = compareScene(name, wrong);
+    EXPECT_FALSE(bad.passed()) << name << " with a wrong parameter still matches: " << bad.describe();
+}
+
+// Mitsuba 3's default distribution (Beckmann) and named conductors (Au, Cu). A small roughness
+// change, or GGX in place of Beckmann, is detected.
+TEST(MitsubaCompat, RoughConductorBeckmann) {
+    checkPlugin("roughconductor", {{"alpha", "0.23"}});
+}
+
+TEST(MitsubaCompat, RoughConductorGgxIsNotBeckmann) {
+    const ReferenceComparison bad = compareScene("roughconductor", {{"distribution", "ggx"}});
+    EXPECT_FALSE(bad.passed()) << bad.describe();
+}
+
+// Named measured conductors as Mitsuba's RGB eta/k; a neighbouring metal (Au for Cu) is detected.
+TEST(MitsubaCompat, ConductorNamedMaterials) { checkPlugin("conductor", {{"material", "Au"}}); }
+
+// Plastic (linear and nonlinear); int_ior 1.5 -> 1.6 is detected.
+TEST(MitsubaCompat, Plastic) { checkPlugin("plastic", {{"int_ior", "1.6"}}); }
+
+// Thin dielectric pane; int_ior 1.5 -> 1.8 is detected.
+TEST(MitsubaCompat, ThinDielectric) { checkPlugin("thindielectric", {{"int_ior", "1.8"}}); }
+
+// Rough dielectric, Beckmann (default) and GGX, from both sides; alpha 0.2 -> 0.3 is detected.
+TEST(MitsubaCompat, RoughDielectric) { checkPlugin("roughdielectric", {{"alpha", "0.3"}}); }
+
+}  // namespace
+}  // namespace caustica::test

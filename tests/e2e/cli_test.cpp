@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "caustica/io/image_io.h"
+#include "cli_helpers.h"
 #include "render_helpers.h"
 
 namespace caustica::test {
@@ -19,38 +20,16 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-    int exitCode;
-    std::string output;  // stdout and stderr
-};
+using Result = CliResult;
+inline Result run(const std::string& args) { return runCli(args); }
 
-Result run(const std::string& args) {
-    std::string cmd = std::string(CAUSTICA_BINARY) + " " + args + " 2>&1";
-    Result r{-1, {}};
-    FILE* p = popen(cmd.c_str(), "r");
-    if (!p) return r;
-    char buf[4096];
-    while (size_t n = fread(buf, 1, sizeof buf, p)) r.output.append(buf, n);
-    int status = pclose(p);
-    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
-}
-
-class Cli : public ::testing::Test {
+class Cli : public CliFixture {
 protected:
-    void SetUp() override {
-        dir = fs::temp_directory_path() / ("caustica_cli_" + std::string(
-                  ::testing::UnitTest::GetInstance()->current_test_info()->name()));
-        fs::remove_all(dir);
-        fs::create_directories(dir);
-    }
-    std::string path(const std::string& name) const { return (dir / name).string(); }
     std::string write(const std::string& name, const std::string& text) const {
         std::ofstream(path(name)) << text;
         return path(name);
     }
     const std::string box = sourcePath("scenes/cornell-box/scene.xml");
-    fs::path dir;
 };
 
 TEST_F(Cli, RendersAllFormatsWithStatistics) {

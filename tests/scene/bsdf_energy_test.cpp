@@ -97,7 +97,9 @@ TEST(BsdfEnergy, AlbedoAtMostOne) {
             }
             ++seed;
             // White parameters: no single sample may carry more than the incident energy.
-            if (c.weightBound) EXPECT_LE(maxWeight, 1 + kWeightTolerance) << at;
+            if (c.weightBound) {
+                EXPECT_LE(maxWeight, 1 + kWeightTolerance) << at;
+            }
             EXPECT_LE(sampled.mean(), 1 + z * sampled.stdErr() + 1e-6) << at;
             if (c.uniformCheck) {
                 const double se = std::sqrt(sqr(sampled.stdErr()) + sqr(uniform.stdErr()));
@@ -108,7 +110,9 @@ TEST(BsdfEnergy, AlbedoAtMostOne) {
                 EXPECT_NEAR(sampled.mean(), 1.0, 1e-6) << at;  // every weight is exactly 1
                 EXPECT_LE(std::fabs(uniform.mean() - 1), z * uniform.stdErr()) << at;
             }
-            if (c.name == "thindielectric") EXPECT_NEAR(sampled.mean(), 1.0, 1e-6) << at;
+            if (c.name == "thindielectric") {
+                EXPECT_NEAR(sampled.mean(), 1.0, 1e-6) << at;
+            }
         }
 }
 
@@ -172,7 +176,9 @@ TEST(BsdfEnergy, RoughDielectricConservesFlux) {
                                        " at " + std::to_string(int(theta));
                 EXPECT_LE(maxFlux, 1 + kWeightTolerance) << at;
                 EXPECT_LE(flux.mean(), 1 + z * flux.stdErr() + 1e-6) << at;
-                if (a < 0.1f) EXPECT_GT(flux.mean(), 0.97) << at;
+                if (a < 0.1f) {
+                    EXPECT_GT(flux.mean(), 0.97) << at;
+                }
                 if (a > 0.1f) {  // uniform sampling cannot resolve the narrow lobe
                     const double se = std::sqrt(sqr(radiance.stdErr()) + sqr(uniform.stdErr()));
                     EXPECT_LE(std::fabs(radiance.mean() - uniform.mean()), z * se + 1e-6)

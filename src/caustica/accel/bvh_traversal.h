@@ -69,6 +69,19 @@ CA_HD_INLINE uint32_t intersectChildren(const BvhNode& node, const TraversalRay&
     return mask;
 }
 
+/// Indices of the children in `mask`, front to back by entry distance (insertion sort of <= 4;
+/// ties keep slot order). Returns how many there are.
+CA_HD_INLINE int sortChildrenByEntry(uint32_t mask, const Float* tEntry, int* order) {
+    int n = 0;
+    for (int k = 0; k < BvhNode::kWidth; ++k) {
+        if (!(mask & (1u << k))) continue;
+        int j = n++;
+        for (; j > 0 && tEntry[order[j - 1]] > tEntry[k]; --j) order[j] = order[j - 1];
+        order[j] = k;
+    }
+    return n;
+}
+
 /// Tests primitives [begin, begin + count) of primIndices, updating `hit` (whose t is the current
 /// search limit).
 template <bool AnyHit>
@@ -133,13 +146,7 @@ CA_HD bool traverse(const BvhView& bvh, const SceneView& scene, const Ray& ray, 
             if (mask != 0) {
                 // Children hit, sorted front to back by entry distance (insertion sort of <= 4).
                 int order[BvhNode::kWidth];
-                int n = 0;
-                for (int k = 0; k < BvhNode::kWidth; ++k) {
-                    if (!(mask & (1u << k))) continue;
-                    int j = n++;
-                    for (; j > 0 && tEntry[order[j - 1]] > tEntry[k]; --j) order[j] = order[j - 1];
-                    order[j] = k;
-                }
+                const int n = sortChildrenByEntry(mask, tEntry, order);
                 // Farther children wait on the stack, the nearest is visited now.
                 for (int j = n - 1; j > 0; --j) {
                     const int k = order[j];
@@ -244,13 +251,7 @@ CA_HD bool traverseShortStack(const BvhView& bvh, const SceneView& scene, const 
             }
             if (mask != 0) {
                 int order[BvhNode::kWidth];
-                int n = 0;
-                for (int k = 0; k < BvhNode::kWidth; ++k) {
-                    if (!(mask & (1u << k))) continue;
-                    int j = n++;
-                    for (; j > 0 && tEntry[order[j - 1]] > tEntry[k]; --j) order[j] = order[j - 1];
-                    order[j] = k;
-                }
+                const int n = sortChildrenByEntry(mask, tEntry, order);
                 for (int j = n - 1; j > 0; --j) {
                     const int k = order[j];
                     if constexpr (StackSize > 0) {

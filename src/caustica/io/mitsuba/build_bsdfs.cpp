@@ -156,13 +156,9 @@ Bsdf roughDielectric(BuildContext& ctx, Params& p) {
     return b;
 }
 
-Bsdf thinDielectric(BuildContext&, Params& p) {
-    Bsdf b;
+Bsdf thinDielectric(BuildContext& ctx, Params& p) {
+    Bsdf b = dielectric(ctx, p);  // the same parameters as dielectric
     b.type = BsdfType::ThinDielectric;
-    Float intIor = readIor(p, "int_ior", 1.5046f), extIor = readIor(p, "ext_ior", 1.000277f);
-    b.etaRatio = intIor / extIor;
-    b.reflectance = p.getSpectrum("specular_reflectance", Spectrum(1.0f));
-    b.transmittance = p.getSpectrum("specular_transmittance", Spectrum(1.0f));
     return b;
 }
 

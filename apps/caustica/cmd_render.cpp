@@ -15,8 +15,8 @@
 #include "caustica/accel/accel.h"
 #include "caustica/integrators/path/gpu_memory.h"
 #include "caustica/integrators/path/path_integrator.h"
-#include "caustica/integrators/path/wavefront.h"
 #include "caustica/integrators/render_loop.h"
+#include "caustica/integrators/sample_pass.h"
 #include "caustica/io/scene_loader.h"
 #include "caustica/util/error.h"
 #include "caustica/parallel/device_select.h"
@@ -50,7 +50,7 @@ struct RenderOptions {
     std::string res;
     std::vector<std::string> defines;
     std::string accel = "embree";
-    std::string integrator = "path";
+    std::string integrator;  // empty: the scene's
     std::string pathMode = "megakernel";
     std::string device = "auto";
     std::string gpuMode = "megakernel";
@@ -141,6 +141,13 @@ std::function<int()> addRenderCommand(CLI::App& app) {
         Scene scene = loadScene(opt->scene, parseDefines(opt->defines));
         if (!opt->res.empty()) applyResolution(scene, opt->res);
         if (!seedGiven) opt->seed = scene.seed;
+        if (!opt->integrator.empty()) parseIntegratorType(opt->integrator, scene.integrator.type);
+        if (!rendersBySamplePasses(scene.integrator.type))
+            throw Error(std::string("integrator ") + integratorTypeName(scene.integrator.type) +
+                        " is not available in this build");
+        if (onGpu && scene.integrator.type != IntegratorType::Path)
+            throw Error(std::string("--device cuda renders with the path integrator only; ") +
+                        integratorTypeName(scene.integrator.type) + " runs on --device cpu");
         const int sppTarget = opt->spp > 0 ? opt->spp : (opt->time > 0 ? 0 : scene.sampleCount);
 
         Film film(scene.film);
@@ -208,7 +215,7 @@ std::function<int()> addRenderCommand(CLI::App& app) {
         if (!opt->quiet)
             progress = std::make_unique<ProgressReporter>("render", sppTarget > 0 ? sppTarget : 0, opt->time);
         double lastCheckpoint = 0;
-        OutputInfo info{opt->scene, "path", accelName, opt->seed};
+        OutputInfo info{opt->scene, integratorTypeName(scene.integrator.type), accelName, opt->seed};
         auto passDone = [&](const Film& f, const RenderStats& stats) {
             if (progress) progress->update(double(f.samplesPerPixel()));
             if (opt->checkpointEvery > 0 && stats.seconds - lastCheckpoint >= opt->checkpointEvery) {
@@ -222,9 +229,7 @@ std::function<int()> addRenderCommand(CLI::App& app) {
 #ifdef CAUSTICA_WITH_CUDA
             if (gpu) return gpu->renderPass(opt->seed, first, pass);
 #endif
-            if (wavefront)
-                return renderPathPassWavefront(scene, accel, settings, opt->seed, first, pass);
-            return renderPathPass(scene, accel, settings, opt->seed, first, pass);
+            return renderSamplePass(scene, accel, scene.integrator, opt->seed, first, pass, wavefront);
         };
         RenderStats stats = runRenderLoop(film, budget, renderPass, passDone);
         if (progress) progress->finish();

@@ -4,49 +4,10 @@
 // reference tests (tests/common/image_stats.h). Each scene is also rendered with one parameter
 // changed slightly (through its <default>s), which the same statistics must reject: the tests
 // can fail.
-#include <gtest/gtest.h>
-
-#include <cstdio>
-#include <filesystem>
-#include <map>
-#include <string>
-
-#include "caustica/io/image_io.h"
-#include "common/image_stats.h"
-#include "e2e/render_helpers.h"
+#include "compat/compat_helpers.h"
 
 namespace caustica::test {
 namespace {
-
-constexpr int kRuns = 16, kSppPerRun = 256;
-
-ReferenceComparison compareScene(const std::string& name,
-                                 const std::map<std::string, std::string>& defines = {}) {
-    const std::string ref = sourcePath("tests/compat/reference/" + name);
-    if (!std::filesystem::exists(ref + ".exr")) {
-        ADD_FAILURE() << "missing reference " << ref << ".exr";
-        return {};
-    }
-    const Image mean = readImage(ref + ".exr"), var = readImage(ref + ".var.exr");
-    const double refSpp = referenceSpp(ref + ".json");
-    EXPECT_GT(refSpp, 0);
-    Scene scene = loadScene(sourcePath("tests/compat/scenes/" + name + ".xml"), defines);
-    RenderEnsemble ours = renderEnsemble(scene, kRuns, kSppPerRun);
-    EXPECT_EQ(ours.mean.rgb.size(), mean.rgb.size());
-    if (ours.mean.rgb.size() != mean.rgb.size()) return {};
-    const ReferenceComparison r = compareToReference(ours, mean, var, refSpp, kRuns, kSppPerRun);
-    std::string d;
-    for (const auto& [k, v] : defines) d += " " + k + "=" + v;
-    std::printf("compat %s%s: %s\n", name.c_str(), d.c_str(), r.describe().c_str());
-    return r;
-}
-
-/// The scene matches its reference; with `wrong` defines it must not.
-void checkPlugin(const std::string& name, const std::map<std::string, std::string>& wrong) {
-    expectMatches(compareScene(name));
-    const ReferenceComparison bad = compareScene(name, wrong);
-    EXPECT_FALSE(bad.passed()) << name << " with a wrong parameter still matches: " << bad.describe();
-}
 
 // Mitsuba 3's default distribution (Beckmann) and named conductors (Au, Cu). A small roughness
 // change, or GGX in place of Beckmann, is detected.

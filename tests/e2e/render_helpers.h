@@ -10,9 +10,8 @@
 
 #include "caustica/accel/accel.h"
 #include "caustica/film/film.h"
-#include "caustica/integrators/path/path_integrator.h"
-#include "caustica/integrators/path/wavefront.h"
 #include "caustica/integrators/render_loop.h"
+#include "caustica/integrators/sample_pass.h"
 #include "caustica/io/scene_loader.h"
 
 namespace caustica::test {
@@ -29,18 +28,15 @@ struct RenderRequest {
     bool wavefront = false;  // path tracer execution: megakernel (false) or wavefront (true)
 };
 
-/// Renders a loaded scene with the path tracer and returns the developed image.
+/// Renders a loaded scene with its integrator and returns the developed image.
 inline Image renderImage(const Scene& scene, const RenderRequest& request) {
     Accel accel(scene, request.accel);
     Film film(scene.film);
     RenderBudget budget;
     budget.samplesPerPixel = request.spp;
     budget.samplesPerPass = 4;
-    const PathSettings settings = pathSettingsFrom(scene.integrator);
     auto pass = [&](int first, int, SamplePass& p) {
-        if (request.wavefront)
-            return renderPathPassWavefront(scene, accel, settings, request.seed, first, p);
-        return renderPathPass(scene, accel, settings, request.seed, first, p);
+        return renderSamplePass(scene, accel, scene.integrator, request.seed, first, p, request.wavefront);
     };
     if (request.threads > 0) {
         tbb::task_arena arena(request.threads);

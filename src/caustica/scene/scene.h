@@ -29,7 +29,27 @@ struct FilmDesc {
     FilterDesc filter;
 };
 
-enum class IntegratorType : uint32_t { Path };
+enum class IntegratorType : uint32_t { Path, Direct, Mlt };
+
+/// The integrator's name as the CLI and the scene format spell it ("path", "direct", "mlt").
+inline const char* integratorTypeName(IntegratorType type) {
+    switch (type) {
+        case IntegratorType::Path: return "path";
+        case IntegratorType::Direct: return "direct";
+        case IntegratorType::Mlt: return "mlt";
+    }
+    return "?";
+}
+
+/// Parses an integrator name as integratorTypeName spells it; false when unknown.
+inline bool parseIntegratorType(const std::string& name, IntegratorType& type) {
+    for (IntegratorType t : {IntegratorType::Path, IntegratorType::Direct, IntegratorType::Mlt})
+        if (name == integratorTypeName(t)) {
+            type = t;
+            return true;
+        }
+    return false;
+}
 
 struct IntegratorDesc {
     IntegratorType type = IntegratorType::Path;

@@ -39,7 +39,8 @@ void megakernelPass(const SceneView& scene, const BvhIntersector& accel,
         const Vec2f jitter = sampler.get2D();
         const Vec2f pos(Float(x) + jitter.x, Float(y) + jitter.y);
         uint32_t rayCount = 0;
-        const Spectrum L = pathRadiance(sv, bi, sampler, generateCameraRay(sv.camera, pos), ps, rayCount);
+        const Ray ray = sampleCameraRay(sv.camera, pos, sampler);
+        const Spectrum L = pathRadiance(sv, bi, sampler, ray, ps, rayCount);
         samples[slot] = PixelSample{pos, L};
         rays[slot] = rayCount;
     }, 128);
@@ -92,10 +93,11 @@ uint64_t wavefrontChunk(const SceneView& scene, const BvhIntersector& accel,
         IndependentSampler sampler(pixel, uint64_t(firstSample) + s, seed);
         const Vec2f jitter = sampler.get2D();
         const Vec2f pos(Float(x) + jitter.x, Float(y) + jitter.y);
+        const Ray ray = sampleCameraRay(sv.camera, pos, sampler);  // may draw a lens sample
         ws.sampler[i] = sampler;
         samples[slot].pos = pos;
         live[i] = uint32_t(i);
-        ws.alive[i] = startPath(ws.state[i], generateCameraRay(sv.camera, pos), ps);
+        ws.alive[i] = startPath(ws.state[i], ray, ps);
     });
     size_t liveCount = compactQueue(ws.alive, live, n, ws.selected, next);
     std::swap(live, next);

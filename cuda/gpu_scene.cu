@@ -24,12 +24,16 @@ GpuScene::GpuScene(const Scene& scene, const Bvh& bvh) {
     view_.triangles = upload(triangles_, scene.triangles, bytes_);
     view_.triangleShape = upload(triangleShape_, scene.triangleShape, bytes_);
     view_.spheres = upload(spheres_, scene.spheres, bytes_);
+    view_.cylinders = upload(cylinders_, scene.cylinders, bytes_);
     view_.shapes = upload(shapes_, scene.shapes, bytes_);
     view_.bsdfs = upload(bsdfs_, scene.bsdfs, bytes_);
     view_.lights = upload(lights_, scene.lights, bytes_);
     view_.lightCdf = upload(lightCdf_, scene.lightCdf, bytes_);
+    view_.lightTexels = upload(lightTexels_, scene.lightTexels, bytes_);  // envmap texels
     view_.environmentLight = scene.environmentLight;
     view_.camera = scene.camera;
+    view_.textures = upload(textures_, scene.textures, bytes_);  // BSDF textures and their texels
+    view_.texels = upload(texels_, scene.texels, bytes_);
     bvhView_.nodes = upload(nodes_, bvh.nodes, bytes_);
     bvhView_.primIndices = upload(primIndices_, bvh.primIndices, bytes_);
     bvhView_.prims = upload(prims_, bvh.prims, bytes_);

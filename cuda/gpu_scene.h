@@ -35,10 +35,14 @@ private:
     Buffer<Vec3u> triangles_;
     Buffer<uint32_t> triangleShape_;
     Buffer<Sphere> spheres_;
+    Buffer<Cylinder> cylinders_;
     Buffer<Shape> shapes_;
     Buffer<Bsdf> bsdfs_;
     Buffer<Light> lights_;
     Buffer<float> lightCdf_;
+    Buffer<Spectrum> lightTexels_;
+    Buffer<Texture> textures_;
+    Buffer<Spectrum> texels_;
     Buffer<BvhNode> nodes_;
     Buffer<uint32_t> primIndices_;
     Buffer<BvhPrimitive> prims_;

@@ -26,7 +26,7 @@ __global__ void pathMegakernel(SceneView scene, BvhIntersector accel, PathSettin
     Vec2f jitter = sampler.get2D();
     Vec2f pos(Float(x) + jitter.x, Float(y) + jitter.y);
     uint32_t rayCount = 0;
-    Spectrum L = pathRadiance(scene, accel, sampler, generateCameraRay(scene.camera, pos), settings, rayCount);
+    Spectrum L = pathRadiance(scene, accel, sampler, sampleCameraRay(scene.camera, pos, sampler), settings, rayCount);
     positions[pixel] = pos;
     radiance[pixel] = L;
     rays[pixel] = rayCount;

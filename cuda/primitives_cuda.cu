@@ -1,8 +1,9 @@
 // primitives_cuda.cu — the CUDA backend of the parallel layer: device memory (cudaMalloc, never
 // managed memory) and the primitives on CUB. registerCudaBackend() installs them into the
 // GpuBackend table of caustica_parallel (parallel/backend.h). Every call is on the default
-// stream; functions that return a value synchronize by copying it back. Scratch memory is
-// allocated per call. Every CUDA call is checked (caustica::Error on failure).
+// stream; functions that return a value synchronize by copying it back. Scratch memory (CUB
+// temporaries, sort double buffers, result slots) comes from one grow-only cache kept between
+// calls (ScratchCache). Every CUDA call is checked (caustica::Error on failure).
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
@@ -74,24 +75,49 @@ void trackedFree(void* ptr) {
     }
 }
 
-/// Device memory released when the scope ends (CUB temporary storage, alternate sort buffers).
-class DeviceScratch {
+/// The primitives' scratch memory (CUB temporary storage, the sort's alternate buffers, result
+/// slots), kept between calls: one grow-only device buffer, reallocated only when a call needs
+/// more than it holds. Allocating per call cost a cudaMalloc and a cudaFree (which waits for the
+/// device) several times per wavefront bounce. A primitive holds the cache's lock from carving
+/// its regions until its last use of them; all work is on the default stream, so the next call's
+/// kernels are ordered after the previous call's, and a reallocation's cudaFree waits for them.
+/// The buffer is counted by the allocation tracker like any other and lives until exit.
+class ScratchCache {
 public:
-    explicit DeviceScratch(size_t bytes) {
-        if (bytes > 0) ptr_ = trackedMalloc(bytes);
-    }
-    ~DeviceScratch() { trackedFree(ptr_); }
-    DeviceScratch(const DeviceScratch&) = delete;
-    DeviceScratch& operator=(const DeviceScratch&) = delete;
-    void* get() const { return ptr_; }
-    template <class T>
-    T* as() const {
-        return static_cast<T*>(ptr_);
+    /// Regions of `bytes[i]` bytes each (256-byte aligned) in the cached buffer, valid while the
+    /// returned lock is held.
+    template <size_t N>
+    std::unique_lock<std::mutex> carve(const size_t (&bytes)[N], void* (&out)[N]) {
+        std::unique_lock<std::mutex> lock(mutex_);
+        size_t total = 0;
+        for (size_t b : bytes) total += align(b);
+        if (total > capacity_) {
+            trackedFree(ptr_);
+            ptr_ = nullptr;
+            capacity_ = 0;
+            ptr_ = trackedMalloc(total);
+            capacity_ = total;
+        }
+        size_t offset = 0;
+        for (size_t i = 0; i < N; ++i) {
+            out[i] = static_cast<char*>(ptr_) + offset;
+            offset += align(bytes[i]);
+        }
+        return lock;
     }
 
 private:
+    static size_t align(size_t bytes) { return (bytes + 255) / 256 * 256; }
+    std::mutex mutex_;
     void* ptr_ = nullptr;
+    size_t capacity_ = 0;
 };
+
+ScratchCache& scratchCache() {
+    // Never destroyed: freeing at exit could run after the CUDA runtime has shut down.
+    static ScratchCache* cache = new ScratchCache;
+    return *cache;
+}
 
 template <class T>
 T downloadOne(const T* devicePtr) {
@@ -128,20 +154,25 @@ uint32_t exclusiveScan(const uint32_t* in, uint32_t* out, size_t n) {
     const uint32_t last = downloadOne(in + n - 1);  // read before an in-place scan overwrites it
     size_t tempBytes = 0;
     CA_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(nullptr, tempBytes, in, out, n));
-    DeviceScratch temp(tempBytes);
-    CA_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(temp.get(), tempBytes, in, out, n));
+    void* temp[1];
+    const auto lock = scratchCache().carve({tempBytes}, temp);
+    CA_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(temp[0], tempBytes, in, out, n));
     return downloadOne(out + n - 1) + last;
 }
 
 template <class Key>
 void sortPairs(Key* keys, uint32_t* values, size_t n, int keyBits) {
-    DeviceScratch keysAlt(n * sizeof(Key)), valuesAlt(n * sizeof(uint32_t));
-    cub::DoubleBuffer<Key> k(keys, keysAlt.as<Key>());
-    cub::DoubleBuffer<uint32_t> v(values, valuesAlt.as<uint32_t>());
     size_t tempBytes = 0;
-    CA_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, tempBytes, k, v, n, 0, keyBits));
-    DeviceScratch temp(tempBytes);
-    CA_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(temp.get(), tempBytes, k, v, n, 0, keyBits));
+    {
+        cub::DoubleBuffer<Key> k(keys, nullptr);
+        cub::DoubleBuffer<uint32_t> v(values, nullptr);
+        CA_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, tempBytes, k, v, n, 0, keyBits));
+    }
+    void* region[3];
+    const auto lock = scratchCache().carve({n * sizeof(Key), n * sizeof(uint32_t), tempBytes}, region);
+    cub::DoubleBuffer<Key> k(keys, static_cast<Key*>(region[0]));
+    cub::DoubleBuffer<uint32_t> v(values, static_cast<uint32_t*>(region[1]));
+    CA_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(region[2], tempBytes, k, v, n, 0, keyBits));
     if (k.Current() != keys) {
         CA_CUDA_CHECK(cudaMemcpy(keys, k.Current(), n * sizeof(Key), cudaMemcpyDeviceToDevice));
     }
@@ -149,7 +180,6 @@ void sortPairs(Key* keys, uint32_t* values, size_t n, int keyBits) {
         CA_CUDA_CHECK(
             cudaMemcpy(values, v.Current(), n * sizeof(uint32_t), cudaMemcpyDeviceToDevice));
     }
-    // The scratch is freed on return; cudaFree waits for the sort to finish first.
 }
 
 void sortPairs64(uint64_t* keys, uint32_t* values, size_t n, int keyBits) {
@@ -162,14 +192,15 @@ void sortPairs32(uint32_t* keys, uint32_t* values, size_t n, int keyBits) {
 
 uint32_t compactIndices(const uint32_t* flags, uint32_t* out, size_t n) {
     const thrust::counting_iterator<uint32_t> indices(0);
-    DeviceScratch count(sizeof(uint32_t));
     size_t tempBytes = 0;
     CA_CUDA_CHECK(cub::DeviceSelect::Flagged(nullptr, tempBytes, indices, flags, out,
-                                             count.as<uint32_t>(), int64_t(n)));
-    DeviceScratch temp(tempBytes);
-    CA_CUDA_CHECK(cub::DeviceSelect::Flagged(temp.get(), tempBytes, indices, flags, out,
-                                             count.as<uint32_t>(), int64_t(n)));
-    return downloadOne(count.as<uint32_t>());
+                                             static_cast<uint32_t*>(nullptr), int64_t(n)));
+    void* region[2];
+    const auto lock = scratchCache().carve({sizeof(uint32_t), tempBytes}, region);
+    uint32_t* count = static_cast<uint32_t*>(region[0]);
+    CA_CUDA_CHECK(cub::DeviceSelect::Flagged(region[1], tempBytes, indices, flags, out, count,
+                                             int64_t(n)));
+    return downloadOne(count);
 }
 
 /// float -> double before adding, as the CPU does.
@@ -183,27 +214,28 @@ struct MaxOp {
 };
 
 double reduceSum(const float* in, size_t n) {
-    DeviceScratch result(sizeof(double));
     size_t tempBytes = 0;
-    CA_CUDA_CHECK(cub::DeviceReduce::TransformReduce(nullptr, tempBytes, in, result.as<double>(), n,
+    CA_CUDA_CHECK(cub::DeviceReduce::TransformReduce(nullptr, tempBytes, in,
+                                                     static_cast<double*>(nullptr), n,
                                                      cuda::std::plus<double>(), ToDouble(), 0.0));
-    DeviceScratch temp(tempBytes);
-    CA_CUDA_CHECK(cub::DeviceReduce::TransformReduce(temp.get(), tempBytes, in, result.as<double>(),
-                                                     n, cuda::std::plus<double>(), ToDouble(),
-                                                     0.0));
-    return downloadOne(result.as<double>());
+    void* region[2];
+    const auto lock = scratchCache().carve({sizeof(double), tempBytes}, region);
+    double* result = static_cast<double*>(region[0]);
+    CA_CUDA_CHECK(cub::DeviceReduce::TransformReduce(region[1], tempBytes, in, result, n,
+                                                     cuda::std::plus<double>(), ToDouble(), 0.0));
+    return downloadOne(result);
 }
 
 float reduceMax(const float* in, size_t n) {
-    DeviceScratch result(sizeof(float));
     const float init = -std::numeric_limits<float>::infinity();
     size_t tempBytes = 0;
-    CA_CUDA_CHECK(
-        cub::DeviceReduce::Reduce(nullptr, tempBytes, in, result.as<float>(), n, MaxOp(), init));
-    DeviceScratch temp(tempBytes);
-    CA_CUDA_CHECK(
-        cub::DeviceReduce::Reduce(temp.get(), tempBytes, in, result.as<float>(), n, MaxOp(), init));
-    return downloadOne(result.as<float>());
+    CA_CUDA_CHECK(cub::DeviceReduce::Reduce(nullptr, tempBytes, in, static_cast<float*>(nullptr), n,
+                                            MaxOp(), init));
+    void* region[2];
+    const auto lock = scratchCache().carve({sizeof(float), tempBytes}, region);
+    float* result = static_cast<float*>(region[0]);
+    CA_CUDA_CHECK(cub::DeviceReduce::Reduce(region[1], tempBytes, in, result, n, MaxOp(), init));
+    return downloadOne(result);
 }
 
 const GpuBackend kCudaBackend = {

@@ -11,6 +11,7 @@
 #include <memory>
 
 #include "commands.h"
+#include "render_mlt.h"
 #include "render_output.h"
 #include "caustica/accel/accel.h"
 #include "caustica/integrators/path/gpu_memory.h"
@@ -60,6 +61,7 @@ struct RenderOptions {
     double checkpointEvery = 60;
     bool resume = false;
     bool quiet = false;
+    MltCliOptions mlt;
 };
 
 void applyResolution(Scene& scene, const std::string& res) {
@@ -73,6 +75,7 @@ void applyResolution(Scene& scene, const std::string& res) {
     scene.camera.tanHalfY = scene.camera.tanHalfX * Float(h) / Float(w);
     scene.camera.width = scene.film.width = w;
     scene.camera.height = scene.film.height = h;
+    scene.camera.cropX = scene.camera.cropY = 0;  // the whole image at the new size, no crop
 }
 
 }  // namespace
@@ -96,7 +99,7 @@ std::function<int()> addRenderCommand(CLI::App& app) {
     cmd->add_option("--accel", opt->accel, "Ray-tracing backend on the CPU (the GPU always traces the own BVH)")
         ->check(CLI::IsMember({"embree", "bvh"}));
     cmd->add_option("--integrator", opt->integrator, "Integrator (overrides the scene's)")
-        ->check(CLI::IsMember({"path"}));
+        ->check(CLI::IsMember({"path", "direct", "mlt"}));
     cmd->add_option("--path-mode", opt->pathMode,
                     "Path tracer execution on the CPU: megakernel (one work item per path) or "
                     "wavefront (one kernel per bounce stage); both give the same image")
@@ -119,6 +122,7 @@ std::function<int()> addRenderCommand(CLI::App& app) {
         ->check(CLI::NonNegativeNumber);
     cmd->add_flag("--resume", opt->resume, "Continue from OUTPUT.ckpt left by an interrupted render");
     cmd->add_flag("-q,--quiet", opt->quiet, "No progress bar");
+    addMltOptions(*cmd, opt->mlt);
 
     CLI::Option* seedOption = cmd->get_option("--seed");
     return [opt, seedOption] {
@@ -129,22 +133,25 @@ std::function<int()> addRenderCommand(CLI::App& app) {
                                                                 size_t(opt->threads));
         // The device first: `--device cuda` without a GPU fails before any work is done.
         const DeviceKind device = selectDevice(opt->device, currentDeviceAvailability());
-        const bool onGpu = device == DeviceKind::Cuda;
+        bool onGpu = device == DeviceKind::Cuda;
         if (opt->kernelStats) {
             KernelStats::global().reset();
             KernelStats::global().setEnabled(true);
         }
-        if (opt->outputs.empty())
-            opt->outputs.push_back(std::filesystem::path(opt->scene).stem().string() + ".exr");
         for (const std::string& out : opt->outputs) checkOutputPath(out);
 
         Scene scene = loadScene(opt->scene, parseDefines(opt->defines));
+        if (opt->outputs.empty()) opt->outputs.push_back(defaultOutputPath(opt->scene, scene.film));
         if (!opt->res.empty()) applyResolution(scene, opt->res);
         if (!seedGiven) opt->seed = scene.seed;
         if (!opt->integrator.empty()) parseIntegratorType(opt->integrator, scene.integrator.type);
-        if (!rendersBySamplePasses(scene.integrator.type))
+        const bool mlt = scene.integrator.type == IntegratorType::Mlt;
+        if (mlt && opt->resume) throw Error("--resume: the mlt integrator keeps no resumable checkpoint");
+        if (!mlt && !rendersBySamplePasses(scene.integrator.type))
             throw Error(std::string("integrator ") + integratorTypeName(scene.integrator.type) +
                         " is not available in this build");
+        // --device auto falls back to the CPU for integrators the GPU does not run yet.
+        if (onGpu && scene.integrator.type != IntegratorType::Path && opt->device == "auto") onGpu = false;
         if (onGpu && scene.integrator.type != IntegratorType::Path)
             throw Error(std::string("--device cuda renders with the path integrator only; ") +
                         integratorTypeName(scene.integrator.type) + " runs on --device cpu");
@@ -170,6 +177,23 @@ std::function<int()> addRenderCommand(CLI::App& app) {
                          scene.film.width, scene.film.height, accelName.c_str(),
                          ProgressReporter::formatDuration(buildSeconds).c_str());
 
+        if (mlt) {
+            std::signal(SIGINT, onInterrupt);
+            std::signal(SIGTERM, onInterrupt);
+            MltRunRequest request;
+            request.outputs = opt->outputs;
+            request.mutationsPerPixel = opt->spp > 0 ? opt->spp : (opt->time > 0 ? 0 : scene.sampleCount);
+            request.timeLimit = opt->time;
+            request.checkpointEvery = opt->checkpointEvery;
+            request.quiet = opt->quiet;
+            request.statsJson = opt->statsJson;
+            request.buildSeconds = buildSeconds;
+            request.info = OutputInfo{opt->scene, "mlt", accelName, opt->seed, scene.film.tonemap};
+            request.cancel = &gCancel;
+            const int code = runMltRender(scene, accel, mltSettingsFrom(scene.integrator, opt->mlt), opt->seed, request);
+            if (opt->kernelStats) std::printf("kernel statistics (cpu):\n%s", KernelStats::global().table().c_str());
+            return code;
+        }
         const PathSettings settings = pathSettingsFrom(scene.integrator);
         RenderBudget budget;
         budget.samplesPerPixel = sppTarget;
@@ -215,7 +239,8 @@ std::function<int()> addRenderCommand(CLI::App& app) {
         if (!opt->quiet)
             progress = std::make_unique<ProgressReporter>("render", sppTarget > 0 ? sppTarget : 0, opt->time);
         double lastCheckpoint = 0;
-        OutputInfo info{opt->scene, integratorTypeName(scene.integrator.type), accelName, opt->seed};
+        OutputInfo info{opt->scene, integratorTypeName(scene.integrator.type), accelName, opt->seed,
+                        scene.film.tonemap};
         auto passDone = [&](const Film& f, const RenderStats& stats) {
             if (progress) progress->update(double(f.samplesPerPixel()));
             if (opt->checkpointEvery > 0 && stats.seconds - lastCheckpoint >= opt->checkpointEvery) {
@@ -249,7 +274,7 @@ std::function<int()> addRenderCommand(CLI::App& app) {
             std::printf("GPU memory: peak %s allocated\n", formatBytes(cudaMemoryCounters().peak).c_str());
         }
 #endif
-        if (opt->kernelStats) std::printf("kernel statistics (%s):\n%s", deviceName(device),
+        if (opt->kernelStats) std::printf("kernel statistics (%s):\n%s", deviceName(onGpu ? DeviceKind::Cuda : DeviceKind::Cpu),
                                           KernelStats::global().table().c_str());
         if (!opt->statsJson.empty()) writeStatsJson(opt->statsJson, stats, info, buildSeconds);
         return stats.cancelled ? 130 : 0;

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "caustica/film/tonemap.h"
 #include "caustica/io/image_io.h"
 #include "caustica/util/error.h"
 #include "caustica/util/progress.h"
@@ -18,20 +19,36 @@ void checkOutputPath(const std::string& path) {
         throw Error(path + ": directory " + dir.string() + " does not exist");
 }
 
+std::string defaultOutputPath(const std::string& scenePath, const FilmDesc& film) {
+    return std::filesystem::path(scenePath).stem().string() + (film.tonemap.ldr ? ".png" : ".exr");
+}
+
 void writeOutputs(const std::vector<std::string>& paths, const Film& film, const RenderStats& stats,
                   const OutputInfo& info) {
-    Image image = film.develop();
+    writeImageOutputs(paths, film.develop(), std::to_string(film.samplesPerPixel()), stats, info);
+}
+
+void writeImageOutputs(const std::vector<std::string>& paths, const Image& image, const std::string& spp,
+                       const RenderStats& stats, const OutputInfo& info) {
     ImageMetadata meta;
-    meta.entries["caustica.spp"] = std::to_string(film.samplesPerPixel());
+    meta.entries["caustica.spp"] = spp;
     meta.entries["caustica.renderTime"] = std::to_string(stats.seconds);
     meta.entries["caustica.integrator"] = info.integrator;
     meta.entries["caustica.accel"] = info.accel;
     meta.entries["caustica.seed"] = std::to_string(info.seed);
     meta.entries["caustica.scene"] = info.scene;
     meta.entries["caustica.invalidSamples"] = std::to_string(stats.invalidSamples);
+    Image ldr;  // tone-mapped once, for every PNG output of an ldrfilm
     for (const std::string& p : paths) {
         // Written beside the target and renamed, so a killed render never leaves a torn image.
-        const std::string tmp = p + ".tmp" + std::filesystem::path(p).extension().string();
+        const std::string ext = std::filesystem::path(p).extension().string();
+        const std::string tmp = p + ".tmp" + ext;
+        if (info.tonemap.ldr && (ext == ".png" || ext == ".PNG")) {
+            if (ldr.empty()) ldr = displayToPngLinear(toneMap(image, info.tonemap));
+            writeImage(tmp, ldr, meta);
+            std::filesystem::rename(tmp, p);
+            continue;
+        }
         writeImage(tmp, image, meta);
         std::filesystem::rename(tmp, p);
     }
@@ -48,7 +65,8 @@ void printSummary(const RenderStats& s, std::FILE* out) {
                  (unsigned long long)s.invalidSamples);
 }
 
-void writeStatsJson(const std::string& path, const RenderStats& s, const OutputInfo& info, double buildSeconds) {
+void writeStatsJson(const std::string& path, const RenderStats& s, const OutputInfo& info, double buildSeconds,
+                    const std::vector<std::pair<std::string, std::string>>& extra) {
     std::ofstream f(path);
     if (!f) throw Error(path + ": cannot write statistics");
     f << "{\n"
@@ -64,8 +82,9 @@ void writeStatsJson(const std::string& path, const RenderStats& s, const OutputI
       << "  \"samples_per_second\": " << (s.seconds > 0 ? double(s.samples) / s.seconds : 0) << ",\n"
       << "  \"rays_per_second\": " << (s.seconds > 0 ? double(s.rays) / s.seconds : 0) << ",\n"
       << "  \"invalid_samples\": " << s.invalidSamples << ",\n"
-      << "  \"cancelled\": " << (s.cancelled ? "true" : "false") << "\n"
-      << "}\n";
+      << "  \"cancelled\": " << (s.cancelled ? "true" : "false");
+    for (const auto& [key, value] : extra) f << ",\n  \"" << key << "\": " << value;
+    f << "\n}\n";
 }
 
 namespace {

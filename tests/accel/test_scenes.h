@@ -134,6 +134,10 @@ inline Vec3f pointOnPrimitive(const Scene& scene, uint32_t id, TestRng& rng) {
         const Vec3f p0 = scene.positions[t.x];
         return p0 + (scene.positions[t.y] - p0) * u + (scene.positions[t.z] - p0) * v;
     }
+    if (id >= scene.triangles.size() + scene.spheres.size()) {  // a cylinder: a point of its axis
+        const Cylinder& c = scene.cylinders[id - scene.triangles.size() - scene.spheres.size()];
+        return c.base + c.axis * (c.length * rng.uniform());
+    }
     const Sphere& s = scene.spheres[id - scene.triangles.size()];
     return s.center + rng.direction() * s.radius;
 }

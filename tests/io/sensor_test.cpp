@@ -136,12 +136,12 @@ TEST(Sensor, RefusedSettings) {
     bad("<sensor type=\"perspective\">\n" + film(20000, 20000) + "</sensor>", 3,
         "at most 2^28 pixels");
     bad("<sensor type=\"perspective\">\n<film type=\"hdrfilm\">\n<integer name=\"crop_width\" "
-        "value=\"8\"/></film></sensor>",
-        4, "'crop_width' (film cropping) is not supported yet");
+        "value=\"800\"/></film></sensor>",
+        3, "crop window 800x576 at (0, 0) does not fit in the 768x576 film");
     bad("<sensor type=\"perspective\">\n<film type=\"specfilm\"/></sensor>", 3,
         "unsupported film type 'specfilm'");
-    bad("<sensor type=\"thinlens\"/>", 2,
-        "unsupported sensor type 'thinlens' (supported: perspective)");
+    bad("<sensor type=\"radiancemeter\"/>", 2,
+        "unsupported sensor type 'radiancemeter' (supported: orthographic, perspective, thinlens)");
     bad("<sensor type=\"perspective\">\n<float name=\"fov\" value=\"180\"/></sensor>", 3,
         "between 0 and 180");
     bad("<sensor type=\"perspective\">\n<string name=\"fov_axis\" value=\"z\"/>\n"
@@ -152,13 +152,11 @@ TEST(Sensor, RefusedSettings) {
     bad("<sensor type=\"perspective\">\n<transform name=\"to_world\"><scale value=\"2\"/>"
         "</transform></sensor>",
         3, "must not scale");
-    bad("<sensor type=\"perspective\">\n<sampler type=\"stratified\"/></sensor>", 3,
-        "unsupported sampler type 'stratified'");
+    bad("<sensor type=\"perspective\">\n<sampler type=\"sobol\"/></sensor>", 3,
+        "unsupported sampler type 'sobol'");
     bad("<sensor type=\"perspective\">\n<sampler type=\"independent\">\n<integer "
         "name=\"sample_count\" value=\"0\"/></sampler></sensor>",
         4, "'sample_count' must be positive");
-    bad(std::string(kSensor) + "\n<integrator type=\"sppm\"/>", 3,
-        "unsupported integrator type 'sppm' (supported: path)");
     bad(std::string(kSensor) +
             "\n<integrator type=\"path\">\n<integer name=\"max_depth\" "
             "value=\"-2\"/></integrator>",

@@ -153,10 +153,10 @@ TEST(MeshShapes, FlipNormalsAndUnknownShapes) {
         oneShape("<shape type=\"cube\"><boolean name=\"flip_normals\" value=\"true\"/></shape>");
     EXPECT_TRUE(s.shapes[0].flipNormals);
     TempDir dir;
-    std::string path = dir.write("u.xml", sceneXml("<shape type=\"cylinder\"/>"));
+    std::string path = dir.write("u.xml", sceneXml("<shape type=\"torus\"/>"));
     expectError([&] { loadScene(path); }, "u.xml", 3,
-                "unsupported shape type 'cylinder' (supported: cube, disk, obj, ply, rectangle, "
-                "sphere)");
+                "unsupported shape type 'torus' (supported: cube, cylinder, disk, obj, ply, "
+                "rectangle, serialized, sphere)");
 }
 
 }  // namespace

@@ -56,7 +56,8 @@ static_assert(sizeof(BvhNode) == 128, "BvhNode must stay 128 bytes");
 /// Primitive data in leaf order, precomputed for traversal so that a leaf test reads one contiguous
 /// 40-byte record instead of an index and three scattered vertices. Triangle: p0 = vertex 0,
 /// e1 = p1 - p0, e2 = p2 - p0 (the exact values intersectPrimitive computes, so results are
-/// bit-identical). Sphere: p0 = centre, e1.x = radius.
+/// bit-identical). Sphere: p0 = centre, e1.x = radius. Cylinder: p0 = base, e1 = unit axis,
+/// e2 = (radius, length, 0).
 struct BvhPrimitive {
     Vec3f p0;
     uint32_t primId = 0;  // = primIndices[i], kept here to save a memory access per primitive

@@ -89,6 +89,7 @@ CA_HD_INLINE bool intersectLeaf(const BvhView& bvh, const SceneView& scene, uint
                                 uint32_t count, const Ray& ray, Hit& hit) {
     bool found = false;
     const uint32_t numTriangles = scene.numTriangles();
+    const uint32_t firstCylinder = scene.firstCylinder();
     const uint32_t end = begin + count;
     if (bvh.prims.empty()) {
         for (uint32_t i = begin; i < end; ++i) {
@@ -103,9 +104,12 @@ CA_HD_INLINE bool intersectLeaf(const BvhView& bvh, const SceneView& scene, uint
         const BvhPrimitive& p = bvh.prims[i];
         const uint32_t id = p.primId;
         Float t, b1 = 0, b2 = 0;
-        const bool h = id < numTriangles
-                           ? intersectTriangle(ray.o, ray.d, hit.t, p.p0, p.e1, p.e2, t, b1, b2)
-                           : intersectSphere(ray.o, ray.d, hit.t, p.p0, p.e1.x, t);
+        const bool h =
+            id < numTriangles
+                ? intersectTriangle(ray.o, ray.d, hit.t, p.p0, p.e1, p.e2, t, b1, b2)
+            : id < firstCylinder
+                ? intersectSphere(ray.o, ray.d, hit.t, p.p0, p.e1.x, t)
+                : intersectCylinder(ray.o, ray.d, hit.t, p.p0, p.e1, p.e2.x, p.e2.y, t);
         if (h) {
             if (AnyHit) return true;
             hit.t = t;

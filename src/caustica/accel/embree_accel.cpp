@@ -35,42 +35,67 @@ void errorCallback(void* user, RTCError code, const char* message) {
         std::string(errorName(code)) + (message ? ": " : "") + (message ? message : "");
 }
 
-// ---- sphere user geometry: the callbacks run caustica's own intersectSphere ------------------
+// ---- sphere and cylinder user geometry: the callbacks run caustica's own intersection tests ----
 
-void sphereBounds(const RTCBoundsFunctionArguments* args) {
-    const Sphere& s = static_cast<const Sphere*>(args->geometryUserPtr)[args->primID];
-    RTCBounds* b = args->bounds_o;
-    b->lower_x = s.center.x - s.radius;
-    b->lower_y = s.center.y - s.radius;
-    b->lower_z = s.center.z - s.radius;
-    b->upper_x = s.center.x + s.radius;
-    b->upper_y = s.center.y + s.radius;
-    b->upper_z = s.center.z + s.radius;
+constexpr unsigned kCylinderGeomId = 2;
+
+Bounds3f primBounds(const Sphere& s) {
+    return Bounds3f{s.center - Vec3f(s.radius), s.center + Vec3f(s.radius)};
+}
+Bounds3f primBounds(const Cylinder& c) { return cylinderBounds(c); }
+
+bool primHit(const Sphere& s, Vec3f o, Vec3f d, Float tMax, Float& t) {
+    return intersectSphere(o, d, tMax, s.center, s.radius, t);
+}
+bool primHit(const Cylinder& c, Vec3f o, Vec3f d, Float tMax, Float& t) {
+    return intersectCylinder(o, d, tMax, c.base, c.axis, c.radius, c.length, t);
 }
 
-/// Hit distance of lane i against the sphere, or a negative value for a miss.
-float sphereHit(const Sphere& s, RTCRayN* ray, unsigned N, unsigned i) {
+/// Outward normal at a hit point (only its direction matters to Embree).
+Vec3f primNormal(const Sphere& s, Vec3f p) { return p - s.center; }
+Vec3f primNormal(const Cylinder& c, Vec3f p) {
+    const Vec3f q = p - c.base;
+    return q - c.axis * dot(q, c.axis);
+}
+
+template <class Prim>
+void userBounds(const RTCBoundsFunctionArguments* args) {
+    const Prim& prim = static_cast<const Prim*>(args->geometryUserPtr)[args->primID];
+    const Bounds3f bb = primBounds(prim);
+    RTCBounds* b = args->bounds_o;
+    b->lower_x = bb.lo.x;
+    b->lower_y = bb.lo.y;
+    b->lower_z = bb.lo.z;
+    b->upper_x = bb.hi.x;
+    b->upper_y = bb.hi.y;
+    b->upper_z = bb.hi.z;
+}
+
+/// Hit distance of lane i against the primitive, or a negative value for a miss.
+template <class Prim>
+float userHit(const Prim& prim, RTCRayN* ray, unsigned N, unsigned i) {
     const Vec3f o(RTCRayN_org_x(ray, N, i), RTCRayN_org_y(ray, N, i), RTCRayN_org_z(ray, N, i));
     const Vec3f d(RTCRayN_dir_x(ray, N, i), RTCRayN_dir_y(ray, N, i), RTCRayN_dir_z(ray, N, i));
     Float t;
-    if (!intersectSphere(o, d, RTCRayN_tfar(ray, N, i), s.center, s.radius, t)) return -1;
+    if (!primHit(prim, o, d, RTCRayN_tfar(ray, N, i), t)) return -1;
     return t > RTCRayN_tnear(ray, N, i) ? t : -1;
 }
 
-void sphereIntersect(const RTCIntersectFunctionNArguments* args) {
-    const Sphere& s = static_cast<const Sphere*>(args->geometryUserPtr)[args->primID];
+template <class Prim>
+void userIntersect(const RTCIntersectFunctionNArguments* args) {
+    const Prim& prim = static_cast<const Prim*>(args->geometryUserPtr)[args->primID];
     RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, args->N);
     RTCHitN* hit = RTCRayHitN_HitN(args->rayhit, args->N);
     for (unsigned i = 0; i < args->N; ++i) {
         if (args->valid[i] != -1) continue;
-        const float t = sphereHit(s, ray, args->N, i);
+        const float t = userHit(prim, ray, args->N, i);
         if (t < 0) continue;
         RTCRayN_tfar(ray, args->N, i) = t;
         const Vec3f o(RTCRayN_org_x(ray, args->N, i), RTCRayN_org_y(ray, args->N, i),
                       RTCRayN_org_z(ray, args->N, i));
         const Vec3f d(RTCRayN_dir_x(ray, args->N, i), RTCRayN_dir_y(ray, args->N, i),
                       RTCRayN_dir_z(ray, args->N, i));
-        const Vec3f n = o + d * t - s.center;
+        const Vec3f n = primNormal(prim, o + d * t);
         RTCHitN_Ng_x(hit, args->N, i) = n.x;
         RTCHitN_Ng_y(hit, args->N, i) = n.y;
         RTCHitN_Ng_z(hit, args->N, i) = n.z;
@@ -82,11 +107,12 @@ void sphereIntersect(const RTCIntersectFunctionNArguments* args) {
     }
 }
 
-void sphereOccluded(const RTCOccludedFunctionNArguments* args) {
-    const Sphere& s = static_cast<const Sphere*>(args->geometryUserPtr)[args->primID];
+template <class Prim>
+void userOccluded(const RTCOccludedFunctionNArguments* args) {
+    const Prim& prim = static_cast<const Prim*>(args->geometryUserPtr)[args->primID];
     for (unsigned i = 0; i < args->N; ++i) {
         if (args->valid[i] != -1) continue;
-        if (sphereHit(s, args->ray, args->N, i) >= 0)
+        if (userHit(prim, args->ray, args->N, i) >= 0)
             RTCRayN_tfar(args->ray, args->N, i) = -std::numeric_limits<float>::infinity();
     }
 }
@@ -109,7 +135,9 @@ void setRay(RTCRay& r, const Ray& ray) {
 
 }  // namespace
 
-EmbreeScene::EmbreeScene(const Scene& scene) : numTriangles_(uint32_t(scene.triangles.size())) {
+EmbreeScene::EmbreeScene(const Scene& scene)
+    : numTriangles_(uint32_t(scene.triangles.size())),
+      firstCylinder_(uint32_t(scene.triangles.size() + scene.spheres.size())) {
     const auto start = std::chrono::steady_clock::now();
     device_ = rtcNewDevice(nullptr);
     if (!device_)
@@ -138,19 +166,9 @@ EmbreeScene::EmbreeScene(const Scene& scene) : numTriangles_(uint32_t(scene.tria
             rtcReleaseGeometry(geom);
             check("triangle geometry");
         }
-        if (!scene.spheres.empty()) {
-            RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_USER);
-            check("rtcNewGeometry(user)");
-            rtcSetGeometryUserPrimitiveCount(geom, unsigned(scene.spheres.size()));
-            rtcSetGeometryUserData(geom, const_cast<Sphere*>(scene.spheres.data()));
-            rtcSetGeometryBoundsFunction(geom, sphereBounds, nullptr);
-            rtcSetGeometryIntersectFunction(geom, sphereIntersect);
-            rtcSetGeometryOccludedFunction(geom, sphereOccluded);
-            rtcCommitGeometry(geom);
-            rtcAttachGeometryByID(scene_, geom, kSphereGeomId);
-            rtcReleaseGeometry(geom);
-            check("sphere geometry");
-        }
+        if (!scene.spheres.empty()) addUserGeometry(scene.spheres, kSphereGeomId, "sphere geometry");
+        if (!scene.cylinders.empty())
+            addUserGeometry(scene.cylinders, kCylinderGeomId, "cylinder geometry");
         rtcCommitScene(scene_);
         check("rtcCommitScene");
     } catch (...) {
@@ -159,6 +177,22 @@ EmbreeScene::EmbreeScene(const Scene& scene) : numTriangles_(uint32_t(scene.tria
     }
     buildMilliseconds_ =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+template <class Prim>
+void EmbreeScene::addUserGeometry(const std::vector<Prim>& prims, unsigned geomId,
+                                  const char* what) {
+    RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_USER);
+    check("rtcNewGeometry(user)");
+    rtcSetGeometryUserPrimitiveCount(geom, unsigned(prims.size()));
+    rtcSetGeometryUserData(geom, const_cast<Prim*>(prims.data()));
+    rtcSetGeometryBoundsFunction(geom, userBounds<Prim>, nullptr);
+    rtcSetGeometryIntersectFunction(geom, userIntersect<Prim>);
+    rtcSetGeometryOccludedFunction(geom, userOccluded<Prim>);
+    rtcCommitGeometry(geom);
+    rtcAttachGeometryByID(scene_, geom, geomId);
+    rtcReleaseGeometry(geom);
+    check(what);
 }
 
 EmbreeScene::~EmbreeScene() { release(); }
@@ -193,7 +227,8 @@ bool EmbreeIntersector::intersect(const Ray& ray, Hit& hit) const {
         hit.b1 = rayHit.hit.u;
         hit.b2 = rayHit.hit.v;
     } else {
-        hit.primId = numTriangles + rayHit.hit.primID;
+        hit.primId = (rayHit.hit.geomID == kSphereGeomId ? numTriangles : firstCylinder) +
+                     rayHit.hit.primID;
         hit.b1 = hit.b2 = 0;
     }
     return true;

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "caustica/scene/ray.h"
 #include "caustica/scene/scene.h"
@@ -19,17 +20,18 @@ namespace caustica {
 /// (0, ray.tMax). Host only; a cheap value type, valid while its EmbreeScene lives.
 struct EmbreeIntersector {
     RTCSceneTy* scene = nullptr;
-    uint32_t numTriangles = 0;  // primId = primID for geometry 0, numTriangles + primID for 1
+    uint32_t numTriangles = 0;   // primId = primID for geometry 0, numTriangles + primID for 1,
+    uint32_t firstCylinder = 0;  // firstCylinder + primID for 2 (cylinders)
 
     bool intersect(const Ray& ray, Hit& hit) const;
     bool occluded(const Ray& ray) const;
 };
 
 /// An Embree device and scene built from a Scene: triangles as geometry 0 (RTC_GEOMETRY_TYPE_
-/// TRIANGLE, vertices and indices copied into Embree's padded buffers), spheres as user geometry 1
-/// whose callbacks run caustica's own intersectSphere. Built with RTC_SCENE_FLAG_ROBUST. The
-/// sphere callbacks read `scene.spheres`, so `scene` must outlive this object. Errors reported by
-/// Embree are thrown as caustica::Error.
+/// TRIANGLE, vertices and indices copied into Embree's padded buffers), spheres and cylinders as
+/// user geometries 1 and 2 whose callbacks run caustica's own intersectSphere/intersectCylinder.
+/// Built with RTC_SCENE_FLAG_ROBUST. The callbacks read `scene.spheres` and `scene.cylinders`,
+/// so `scene` must outlive this object. Errors reported by Embree are thrown as caustica::Error.
 class EmbreeScene {
 public:
     explicit EmbreeScene(const Scene& scene);
@@ -37,16 +39,21 @@ public:
     EmbreeScene(const EmbreeScene&) = delete;
     EmbreeScene& operator=(const EmbreeScene&) = delete;
 
-    EmbreeIntersector intersector() const { return EmbreeIntersector{scene_, numTriangles_}; }
+    EmbreeIntersector intersector() const {
+        return EmbreeIntersector{scene_, numTriangles_, firstCylinder_};
+    }
     double buildMilliseconds() const { return buildMilliseconds_; }
 
 private:
     void check(const char* what);  // throws caustica::Error if the device reports an error
     void release();
+    template <class Prim>
+    void addUserGeometry(const std::vector<Prim>& prims, unsigned geomId, const char* what);
 
     RTCDeviceTy* device_ = nullptr;
     RTCSceneTy* scene_ = nullptr;
     uint32_t numTriangles_ = 0;
+    uint32_t firstCylinder_ = 0;
     double buildMilliseconds_ = 0;
     std::string lastMessage_;  // filled by the device's error callback
 };

@@ -1,5 +1,6 @@
-// primitive_intersect.h — ray–triangle and ray–sphere tests shared by every traversal (own BVH on
-// CPU and GPU, the brute-force reference in the tests, Embree's sphere callbacks).
+// primitive_intersect.h — ray–triangle, ray–sphere and ray–cylinder tests shared by every
+// traversal (own BVH on CPU and GPU, the brute-force reference in the tests, Embree's sphere and
+// cylinder callbacks).
 //
 // Conventions: rays need not have unit direction; a hit is accepted only for t in the open interval
 // (0, tMax). Ray origins are expected to be offset off the surface they leave (spawnRay), so no
@@ -84,8 +85,45 @@ CA_HD_INLINE bool intersectSphere(Vec3f o, Vec3f d, Float tMax, Vec3f center, Fl
     return false;
 }
 
-/// Intersects primitive `primId` (triangles first, then spheres) and updates `hit` when the hit is
-/// in (0, min(ray.tMax, hit.t)). Returns true if `hit` was updated. Spheres report b1 = b2 = 0.
+/// Ray–cylinder intersection for the open cylinder of radius `radius` around the segment
+/// base + [0, length] * axis (unit axis). The quadratic of the ray projected onto the plane
+/// perpendicular to the axis is solved in the robust form of intersectSphere (Haines et al.,
+/// Ray Tracing Gems ch. 7); the nearer root in (0, tMax) whose height lies in [0, length] wins,
+/// so the inside is hit through the open ends (Mitsuba's cylinder has no caps).
+CA_HD_INLINE bool intersectCylinder(Vec3f o, Vec3f d, Float tMax, Vec3f base, Vec3f axis,
+                                    Float radius, Float length, Float& tOut) {
+    const Vec3f f = o - base;
+    const Float fa = dot(f, axis), da = dot(d, axis);
+    const Vec3f fp = f - axis * fa, dp = d - axis * da;  // projections off the axis
+    const Float a = dot(dp, dp);
+    const Float bPrime = -dot(fp, dp);
+    const Float c = dot(fp, fp) - radius * radius;
+    const Vec3f l = fp + dp * (bPrime / a);  // axis -> closest point of the projected line
+    const Float disc = a * (radius * radius - dot(l, l));
+    if (!(disc >= 0)) return false;  // also rejects a = 0 (ray parallel to the axis) and NaN
+    const Float q = bPrime + std::copysign(std::sqrt(disc), bPrime);
+    if (q == 0) return false;
+    Float t0 = c / q, t1 = q / a;
+    if (t0 > t1) {
+        const Float tmp = t0;
+        t0 = t1;
+        t1 = tmp;
+    }
+    const Float h0 = fa + da * t0, h1 = fa + da * t1;
+    if (t0 > 0 && t0 < tMax && h0 >= 0 && h0 <= length) {
+        tOut = t0;
+        return true;
+    }
+    if (t1 > 0 && t1 < tMax && h1 >= 0 && h1 <= length) {
+        tOut = t1;
+        return true;
+    }
+    return false;
+}
+
+/// Intersects primitive `primId` (triangles first, then spheres, then cylinders) and updates
+/// `hit` when the hit is in (0, min(ray.tMax, hit.t)). Returns true if `hit` was updated.
+/// Spheres and cylinders report b1 = b2 = 0.
 CA_HD_INLINE bool intersectPrimitive(const SceneView& scene, uint32_t primId, const Ray& ray,
                                      Hit& hit) {
     const Float tMax = min(ray.tMax, hit.t);
@@ -103,9 +141,15 @@ CA_HD_INLINE bool intersectPrimitive(const SceneView& scene, uint32_t primId, co
         hit.b2 = b2;
         return true;
     }
-    const Sphere& s = scene.spheres[primId - numTriangles];
     Float t;
-    if (!intersectSphere(ray.o, ray.d, tMax, s.center, s.radius, t)) return false;
+    if (primId < scene.firstCylinder()) {
+        const Sphere& s = scene.spheres[primId - numTriangles];
+        if (!intersectSphere(ray.o, ray.d, tMax, s.center, s.radius, t)) return false;
+    } else {
+        const Cylinder& cy = scene.cylinders[primId - scene.firstCylinder()];
+        if (!intersectCylinder(ray.o, ray.d, tMax, cy.base, cy.axis, cy.radius, cy.length, t))
+            return false;
+    }
     hit.t = t;
     hit.primId = primId;
     hit.b1 = hit.b2 = 0;

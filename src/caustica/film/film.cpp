@@ -19,12 +19,6 @@ std::string sizeString(int w, int h) {
     return std::to_string(w) + " x " + std::to_string(h);
 }
 
-// Source pixels on each side of an output pixel whose samples can have non-zero weight: a sample
-// of source pixel x + d sits at offset d + u - 0.5 with u in [0, 1), so |d| < radius + 0.5.
-int footprintOf(const Filter& f) {
-    return int(std::ceil(double(f.radius) + 0.5)) - 1;
-}
-
 // ---- checkpoint format ------------------------------------------------------------------------
 // All fields little-endian:
 //   char[8] magic "CAFILM\r\n" | u32 version | i32 width | i32 height | u32 filter type
@@ -152,7 +146,7 @@ void Film::addPass(const SamplePass& pass) {
     view.width = width_;
     view.height = height_;
     view.samplesPerPixel = pass.samplesPerPixel;
-    view.footprint = footprintOf(filter_);
+    view.footprint = filter_.footprint();
     view.filter = filter_;
     view.samples = pass.samples.data();
     weightScratch_.resize(pass.samples.size() * size_t(2 * (2 * view.footprint + 1)));

@@ -87,6 +87,10 @@ struct Filter {
     CA_HD Float eval(Float dx, Float dy) const { return eval(dx) * eval(dy); }
     CA_HD Float eval(Vec2f d) const { return eval(d.x) * eval(d.y); }
 
+    /// Source pixels on each side of an output pixel whose samples can have non-zero weight: a
+    /// sample of source pixel x + d sits at offset d + u - 0.5 with u in [0, 1), so |d| < radius + 0.5.
+    int footprint() const { return int(std::ceil(double(radius) + 0.5)) - 1; }
+
     /// Analytic integral of the 1-D weight over the real line (the 2-D integral is its square).
     double integral() const {
         switch (type) {

@@ -44,6 +44,21 @@ ErrorMetrics compareImages(const Image& test, const Image& reference) {
     return m;
 }
 
+ErrorMetrics compareImages(const Image& test, const Image& reference, const Image& referenceVariance) {
+    ErrorMetrics m = compareImages(test, reference);
+    checkSameSize(referenceVariance, reference);
+    double se = 0, rel = 0;
+    for (size_t i = 0; i < test.rgb.size(); ++i) {
+        const double b = reference.rgb[i], d = double(test.rgb[i]) - b, v = referenceVariance.rgb[i];
+        se += d * d - v;
+        rel += (d * d - v) / (b * b + kRelMseEpsilon);
+    }
+    const double n = double(std::max<size_t>(test.rgb.size(), 1));
+    m.mseRefNoiseRemoved = se / n;
+    m.relMseRefNoiseRemoved = rel / n;
+    return m;
+}
+
 Image falseColourError(const Image& test, const Image& reference, double scale) {
     checkSameSize(test, reference);
     const size_t n = test.pixelCount();

@@ -13,8 +13,13 @@ namespace caustica {
 ///   relMse = mean (a - b)^2 / (b^2 + 0.01)   (b: the reference; Rousselle et al. 2011)
 ///   mae    = mean |a - b|
 /// `pixels` is the number of pixels compared.
+/// With the reference's per-pixel variance (the variance of its mean, e.g. REF.var.exr), the
+/// expected share of the reference's own noise is subtracted as well: E[(a - b)^2] = (a - r)^2 +
+/// var(b) for an exact value r, so mseRefNoiseRemoved and relMseRefNoiseRemoved estimate the test
+/// image's error against the exact image (they may be slightly negative when it is tiny).
 struct ErrorMetrics {
     double mse = 0, rmse = 0, relMse = 0, mae = 0;
+    double mseRefNoiseRemoved = 0, relMseRefNoiseRemoved = 0;  // only with a reference variance
     size_t pixels = 0;
 };
 
@@ -24,6 +29,8 @@ inline constexpr double kRelMseEpsilon = 0.01;
 /// Compares `test` against `reference`; throws caustica::Error when their sizes differ. Metrics
 /// are NaN when either image holds NaN: a broken render never compares as close.
 ErrorMetrics compareImages(const Image& test, const Image& reference);
+/// The same, also filling the *RefNoiseRemoved metrics from the reference's variance image.
+ErrorMetrics compareImages(const Image& test, const Image& reference, const Image& referenceVariance);
 
 /// Per-pixel relative squared error (the relMse term averaged over the 3 channels) mapped to
 /// viridis, in linear RGB (ready for writeImage's sRGB PNG). `scale` is the error shown as the

@@ -1,4 +1,5 @@
-// image_io.cpp — OpenEXR (via OpenEXR 3), PFM (by hand) and PNG (via stb) reading and writing.
+// image_io.cpp — OpenEXR (via OpenEXR 3), PFM (by hand) and PNG (via stb) reading and writing;
+// JPEG and Radiance HDR reading (via stb).
 #include "caustica/io/image_io.h"
 
 #include <OpenEXR/ImfChannelList.h>
@@ -22,6 +23,7 @@
 #include <memory>
 #include <vector>
 
+#include "caustica/io/hdr_reader.h"
 #include "caustica/util/error.h"
 
 namespace caustica {
@@ -30,7 +32,7 @@ namespace {
 
 using Bytes = std::vector<unsigned char>;
 
-enum class Format { Exr, Pfm, Png };
+enum class Format { Exr, Pfm, Png, Jpeg, Hdr };
 
 Format formatOf(const std::string& path) {
     const std::string name = std::filesystem::path(path).filename().string();
@@ -40,7 +42,10 @@ Format formatOf(const std::string& path) {
     if (ext == "exr") return Format::Exr;
     if (ext == "pfm") return Format::Pfm;
     if (ext == "png") return Format::Png;
-    throw Error(path, 0, "unknown image file extension '" + ext + "' (expected .exr, .pfm, .png)");
+    if (ext == "jpg" || ext == "jpeg") return Format::Jpeg;
+    if (ext == "hdr") return Format::Hdr;
+    throw Error(path, 0,
+                "unknown image file extension '" + ext + "' (expected .exr, .pfm, .png, .jpg, .hdr)");
 }
 
 void checkSize(const std::string& path, int64_t w, int64_t h) {
@@ -390,9 +395,14 @@ void writePng(const std::string& path, const Image& image, const ImageMetadata& 
     if (!out) throw Error(path, 0, "write error");
 }
 
-Image readPng(const std::string& path) {
+/// PNG or JPEG (8 or 16 bits per channel, sRGB-encoded) via stb; decoded to linear unless
+/// `raw`. `magic` is the signature the format requires.
+Image readLdr(const std::string& path, const ImageReadOptions& options, ImageFileInfo* info,
+              const Bytes& magic, const char* formatName) {
     const Bytes data = readFile(path);
     if (data.size() > size_t(INT32_MAX)) throw Error(path, 0, "file too large");
+    if (data.size() < magic.size() || !std::equal(magic.begin(), magic.end(), data.begin()))
+        throw Error(path, 0, std::string("corrupt header: not a ") + formatName + " file");
     const int size = int(data.size());
     int w = 0, h = 0, n = 0;
     if (!stbi_info_from_memory(data.data(), size, &w, &h, &n))
@@ -406,18 +416,39 @@ Image readPng(const std::string& path) {
             stbi_load_16_from_memory(data.data(), size, &w, &h, &n, 3), stbi_image_free);
         if (!p) throw Error(path, 0, std::string("corrupt or truncated data: ") + stbReason());
         image = Image(w, h);
-        for (size_t i = 0; i < image.rgb.size(); ++i)
-            image.rgb[i] = srgbToLinear(float(p.get()[i]) / 65535.0f);
+        for (size_t i = 0; i < image.rgb.size(); ++i) {
+            const float v = float(p.get()[i]) / 65535.0f;
+            image.rgb[i] = options.raw ? v : srgbToLinear(v);
+        }
+        if (info) info->bitsPerChannel = 16;
     } else {
         std::unique_ptr<stbi_uc, void (*)(void*)> p(
             stbi_load_from_memory(data.data(), size, &w, &h, &n, 3), stbi_image_free);
         if (!p) throw Error(path, 0, std::string("corrupt or truncated data: ") + stbReason());
         image = Image(w, h);
-        for (size_t i = 0; i < image.rgb.size(); ++i)
-            image.rgb[i] = srgbToLinear(float(p.get()[i]) / 255.0f);
+        for (size_t i = 0; i < image.rgb.size(); ++i) {
+            const float v = float(p.get()[i]) / 255.0f;
+            image.rgb[i] = options.raw ? v : srgbToLinear(v);
+        }
+        if (info) info->bitsPerChannel = 8;
+    }
+    if (info) info->channels = n;
+    return image;
+}
+
+/// Radiance RGBE (.hdr): linear float RGB (hdr_reader.h; not stb, which hangs on some
+/// truncated files).
+Image readHdr(const std::string& path, ImageFileInfo* info) {
+    Image image = decodeRadianceHdr(path, readFile(path));
+    if (info) {
+        info->bitsPerChannel = 32;
+        info->channels = 3;
     }
     return image;
 }
+
+const Bytes kPngMagic = {137, 80, 78, 71, 13, 10, 26, 10};
+const Bytes kJpegMagic = {0xFF, 0xD8, 0xFF};
 
 ImageMetadata readPngMetadata(const std::string& path) {
     const Bytes data = readFile(path);
@@ -480,6 +511,9 @@ void writeImage(const std::string& path, const Image& image, const ImageMetadata
                 case Format::Png:
                     writePng(tmp, image, metadata);
                     break;
+                case Format::Jpeg:
+                case Format::Hdr:
+                    throw Error(path, 0, "writing .jpg and .hdr images is not supported");
             }
             std::filesystem::rename(tmp, path);
         } catch (const Error& e) {
@@ -494,8 +528,11 @@ void writeImage(const std::string& path, const Image& image, const ImageMetadata
     });
 }
 
-Image readImage(const std::string& path) {
+Image readImage(const std::string& path) { return readImage(path, ImageReadOptions{}); }
+
+Image readImage(const std::string& path, const ImageReadOptions& options, ImageFileInfo* info) {
     const Format format = formatOf(path);
+    if (info) *info = ImageFileInfo{};
     return guarded(path, [&] {
         switch (format) {
             case Format::Exr:
@@ -503,7 +540,11 @@ Image readImage(const std::string& path) {
             case Format::Pfm:
                 return readPfm(path);
             case Format::Png:
-                return readPng(path);
+                return readLdr(path, options, info, kPngMagic, "PNG");
+            case Format::Jpeg:
+                return readLdr(path, options, info, kJpegMagic, "JPEG");
+            case Format::Hdr:
+                return readHdr(path, info);
         }
         return Image();
     });
@@ -520,6 +561,10 @@ ImageMetadata readImageMetadata(const std::string& path) {
                 return ImageMetadata();
             case Format::Png:
                 return readPngMetadata(path);
+            case Format::Jpeg:
+            case Format::Hdr:
+                requireReadable(path);
+                return ImageMetadata();
         }
         return ImageMetadata();
     });

@@ -6,6 +6,8 @@
 //         read:  "PF" (colour) and "Pf" (grey), either byte order, scaled by |scale|.
 //   .png  write: 8-bit sRGB (transfer function applied, clamped to [0, 1]), metadata as tEXt.
 //         read:  8- or 16-bit grey / RGB (alpha ignored), decoded from sRGB to linear.
+//   .jpg, .jpeg  read only: 8-bit grey / RGB, decoded from sRGB to linear.
+//   .hdr  read only: Radiance RGBE, linear.
 //
 // Every failure (missing file, unknown extension, corrupt header, truncated data, absurd size,
 // write error) throws caustica::Error naming the file and the reason.
@@ -32,6 +34,23 @@ void writeImage(const std::string& path, const Image& image, const ImageMetadata
 
 /// Reads an image, linear RGB.
 Image readImage(const std::string& path);
+
+/// readImage's options: `raw` keeps the stored values of sRGB-encoded formats (PNG, JPEG)
+/// instead of decoding them to linear (Mitsuba's bitmap `raw`, for normal and height maps).
+struct ImageReadOptions {
+    bool raw = false;
+};
+
+/// What an image file held: bits per channel (8 or 16 for PNG/JPEG, 32 for float formats; EXR
+/// and PFM report 32) and channels (0 when unknown).
+struct ImageFileInfo {
+    int bitsPerChannel = 32;
+    int channels = 0;
+};
+
+/// readImage with options; fills `info` when given.
+Image readImage(const std::string& path, const ImageReadOptions& options,
+                ImageFileInfo* info = nullptr);
 
 /// Reads an image's metadata: EXR string attributes, PNG tEXt chunks; PFM: always empty.
 ImageMetadata readImageMetadata(const std::string& path);

@@ -2,15 +2,22 @@
 // CPU/GPU kernel code with Mitsuba 3's semantics, so that caustica reproduces Mitsuba's images.
 //
 // Conventions: directions are unit vectors in world space; `wo` points from the surface towards
-// the viewer (Mitsuba's si.wi), `wi` towards the light (Mitsuba's wo). The local frame is built
-// from the shading normal si.ns. Light transport is in radiance mode (refraction scales by 1/η²).
+// the viewer (Mitsuba's si.wi), `wi` towards the light (Mitsuba's wo). The local frame is
+// shadingFrame(si) (interaction.h: the shading normal and dp/du, as Mitsuba), mirrored for the
+// back of a twosided BSDF and tilted by bumpmap/normalmap (resolve). Textured parameters are
+// evaluated at si.uv before a BSDF is evaluated (applyBsdfTextures; texture.h). Light transport
+// is in radiance mode (refraction scales by 1/η²).
 #pragma once
 
+#include "caustica/scene/bsdf_composite.h"
 #include "caustica/scene/bsdf_data.h"
 #include "caustica/scene/bsdf_rough_dielectric.h"
+#include "caustica/scene/bsdf_principled.h"
+#include "caustica/scene/bsdf_rough_plastic.h"
 #include "caustica/scene/fresnel.h"
 #include "caustica/scene/interaction.h"
 #include "caustica/scene/microfacet.h"
+#include "caustica/scene/texture.h"
 #include "caustica/util/sampling.h"
 #include "caustica/util/span.h"
 
@@ -27,19 +34,124 @@ struct BsdfSample {
 
 namespace bsdf_detail {
 
-/// A BSDF after resolving `twosided`: the child that applies and whether the local directions
-/// must be mirrored to its front side (local z negated).
+/// `b` with its textured parameters (Bsdf::textures) replaced by the textures' values at si.uv:
+/// `b` itself when it has none, else a copy in `storage`.
+CA_HD_INLINE const Bsdf& applyBsdfTextures(const Bsdf& b, const SurfaceInteraction& si,
+                                           Bsdf& storage) {
+    if (b.numTextures == 0) return b;
+    storage = b;
+    for (uint32_t i = 0; i < b.numTextures && i < uint32_t(kMaxBsdfTextures); ++i) {
+        const uint32_t tex = b.textures[i].texture;
+        switch (b.textures[i].param) {
+            case BsdfParam::Reflectance: storage.reflectance = evalTexture(si.textures, tex, si.uv); break;
+            case BsdfParam::Diffuse: storage.diffuse = evalTexture(si.textures, tex, si.uv); break;
+            case BsdfParam::Transmittance: storage.transmittance = evalTexture(si.textures, tex, si.uv); break;
+            case BsdfParam::Alpha: storage.alphaU = storage.alphaV = evalTexture1(si.textures, tex, si.uv); break;
+            case BsdfParam::AlphaU: storage.alphaU = evalTexture1(si.textures, tex, si.uv); break;
+            case BsdfParam::AlphaV: storage.alphaV = evalTexture1(si.textures, tex, si.uv); break;
+            case BsdfParam::Weight: storage.weight = evalTexture1(si.textures, tex, si.uv); break;
+        }
+    }
+    return storage;
+}
+
+/// The frame of a bumpmap or normalmap `b` nested in a frame `outer` (world axes, z possibly
+/// mirrored by a twosided), as Mitsuba 3.9's PerturbedBSDF::frames (perturbed_bsdf.h). The
+/// perturbed normal n is computed in the coordinates of the unperturbed shading frame: bumpmap:
+/// dp/du' × dp/dv' with dp/du' = dp/du + n_s (scale ∂h/∂u − n_s·dp/du), turned towards the
+/// geometric normal; normalmap: 2 rgb − 1. With flip_invalid_normals, n is mirrored about the
+/// local z axis when the viewing direction wo is not on its side (Schüssler et al. 2017). Then
+/// s = normalize((1, 0, 0) − n n_x), t = n × s, applied to `outer`'s axes.
+CA_HD_INLINE Frame perturbedFrame(const Bsdf& b, const SurfaceInteraction& si, const Frame& outer,
+                                  Vec3f wo) {
+    Vec3f n;
+    if (b.type == BsdfType::BumpMap) {
+        const Vec2f grad = evalTextureGrad(si.textures, b.frameTexture, si.uv) * b.bumpScale;
+        const Vec3f ns = si.ns;
+        const Vec3f dpdu = si.dpdu + ns * (grad.x - dot(ns, si.dpdu));
+        const Vec3f dpdv = si.dpdv + ns * (grad.y - dot(ns, si.dpdv));
+        Vec3f cr = cross(dpdu, dpdv);
+        if (dot(si.ng, cr) < 0) cr = -cr;
+        n = shadingFrame(si).toLocal(cr);
+    } else {
+        const Spectrum c = evalTexture(si.textures, b.frameTexture, si.uv);
+        n = Vec3f(2 * c.r - 1, 2 * c.g - 1, 2 * c.b - 1);
+    }
+    if (b.flipInvalidNormals) {
+        const Vec3f woL = outer.toLocal(wo);
+        if (woL.z * dot(woL, n) <= 0) n = Vec3f(-n.x, -n.y, n.z);
+    }
+    const Float len2 = lengthSquared(n);
+    n = len2 > 0 && len2 < kInfinity ? n * (1 / std::sqrt(len2)) : Vec3f(0, 0, 1);
+    Frame local;
+    local.n = n;
+    const Vec3f s = Vec3f(1, 0, 0) - n * n.x;
+    const Float s2 = lengthSquared(s);
+    local.s = s2 > 0 ? s * (1 / std::sqrt(s2)) : Vec3f(0, 1, 0);
+    local.t = cross(local.n, local.s);
+    Frame world;  // the local frame's axes in world space, through `outer`
+    world.s = outer.toWorld(local.s);
+    world.t = outer.toWorld(local.t);
+    world.n = outer.toWorld(local.n);
+    return world;
+}
+
+/// The concrete BSDF that applies at `si` for the viewing direction `wo` and the frame of its
+/// local directions: Mitsuba's twosided (the back child sees directions mirrored: local z
+/// negated) and bumpmap / normalmap (a perturbed frame) resolved. `outer` is the frame a
+/// bumpmap/normalmap received: Mitsuba zeroes directions on different sides of it and of the
+/// perturbed frame (the loader allows one bumpmap/normalmap and one twosided per chain).
 struct Resolved {
     const Bsdf* bsdf;
-    bool flip;
+    Frame frame;
+    Frame outer;
+    bool perturbed = false;
+    bool shadowing = false;  // use_shadowing_function of the bumpmap/normalmap
 };
 
-/// Mitsuba's twosided: the front child when cosθo >= 0, else the back child seen mirrored.
-CA_HD_INLINE Resolved resolve(Span<const Bsdf> bsdfs, uint32_t id, Float cosThetaO) {
-    const Bsdf& b = bsdfs[id];
-    if (b.type != BsdfType::TwoSided) return {&b, false};
-    if (cosThetaO < 0) return {&bsdfs[b.back], true};
-    return {&bsdfs[b.front], false};
+/// `flip`: `id` lies under the back of a twosided resolved by bsdf_composite.h (normal negated).
+CA_HD_INLINE Resolved resolve(Span<const Bsdf> bsdfs, uint32_t id, const SurfaceInteraction& si,
+                              Vec3f wo, bool flip = false) {
+    Resolved r{&bsdfs[id], shadingFrame(si), {}, false};
+    if (flip) r.frame.n = -r.frame.n;
+    for (int depth = 0; depth < 3; ++depth) {
+        const Bsdf& b = *r.bsdf;
+        if (b.type == BsdfType::TwoSided) {
+            // Mitsuba's twosided: the front child when cosθo >= 0, else the back child mirrored.
+            if (dot(wo, r.frame.n) < 0) {
+                r.frame.n = -r.frame.n;
+                r.bsdf = &bsdfs[b.back];
+            } else {
+                r.bsdf = &bsdfs[b.front];
+            }
+        } else if (b.type == BsdfType::BumpMap || b.type == BsdfType::NormalMap) {
+            r.outer = r.frame;
+            r.perturbed = true;
+            r.shadowing = b.shadowTerminator;
+            r.frame = perturbedFrame(b, si, r.outer, wo);
+            r.bsdf = &bsdfs[b.front];
+        } else {
+            break;
+        }
+    }
+    return r;
+}
+
+/// Mitsuba's bumpmap/normalmap side test: `w` must lie on the same side of both frames.
+CA_HD_INLINE bool sameSide(const Resolved& r, Vec3f w) {
+    return !r.perturbed || dot(w, r.outer.n) * dot(w, r.frame.n) > 0;
+}
+
+/// Mitsuba's shadowing term for bump and normal maps (eval_shadow_terminator; Estevez et al.,
+/// "A Microfacet-Based Shadowing Function to Solve the Bump Terminator Problem", Ray Tracing
+/// Gems 2019): α² = min(tan²θ_n / 8, 1) of the perturbed normal, G1 = 2 / (1 + sqrt(1 + α²
+/// tan²θ_wi)), angles to the unperturbed normal. 1 without a perturbation. Multiplies f and the
+/// sampled weight, not the pdf.
+CA_HD_INLINE Float shadowTerminator(const Resolved& r, Vec3f wi) {
+    if (!r.perturbed || !r.shadowing) return 1;
+    auto tan2 = [](Float z) { return max(1 - z * z, Float(0)) / (z * z); };
+    const Float alpha2 = min(Float(0.125) * tan2(dot(r.frame.n, r.outer.n)), Float(1));
+    return 2 / (1 + std::sqrt(1 + alpha2 * tan2(dot(wi, r.outer.n))));
 }
 
 CA_HD_INLINE Vec3f flipZ(Vec3f v) { return {v.x, v.y, -v.z}; }
@@ -90,6 +202,10 @@ CA_HD_INLINE Spectrum evalLocal(const Bsdf& b, Vec3f wo, Vec3f wi) {
         }
         case BsdfType::RoughDielectric:
             return roughDielectricEval(b, wo, wi);
+        case BsdfType::RoughPlastic:
+            return roughPlasticEval(b, wo, wi);
+        case BsdfType::Principled:
+            return principledEval(b, wo, wi);
         case BsdfType::Plastic: {
             if (wo.z <= 0 || wi.z <= 0) return {};
             const Float fo = fresnelDielectric(wo.z, b.etaRatio).r;
@@ -112,6 +228,10 @@ CA_HD_INLINE Float pdfLocal(const Bsdf& b, Vec3f wo, Vec3f wi) {
             return roughConductorPdf(microfacetOf(b), wo, wi, normalize(wo + wi));
         case BsdfType::RoughDielectric:
             return roughDielectricPdf(b, wo, wi);
+        case BsdfType::RoughPlastic:
+            return roughPlasticPdf(b, wo, wi);
+        case BsdfType::Principled:
+            return principledPdf(b, wo, wi);
         case BsdfType::Plastic: {
             if (wo.z <= 0 || wi.z <= 0) return 0;
             const Float fo = fresnelDielectric(wo.z, b.etaRatio).r;
@@ -174,6 +294,10 @@ CA_HD_INLINE bool sampleLocal(const Bsdf& b, Vec3f wo, Float uLobe, Vec2f u, Bsd
         }
         case BsdfType::RoughDielectric:
             return roughDielectricSample(b, wo, uLobe, u, out.wi, out.weight, out.pdf, out.eta);
+        case BsdfType::RoughPlastic:
+            return roughPlasticSample(b, wo, uLobe, u, out.wi, out.weight, out.pdf);
+        case BsdfType::Principled:
+            return principledSample(b, wo, uLobe, u, out.wi, out.weight, out.pdf, out.eta);
         case BsdfType::ThinDielectric: {
             // Mitsuba's thindielectric: a pane whose two interfaces reflect R = F + T²F/(1 - F²)
             // in total, R = 2F / (1 + F) (the internal reflections summed); the rest passes
@@ -212,7 +336,7 @@ CA_HD_INLINE bool sampleLocal(const Bsdf& b, Vec3f wo, Float uLobe, Vec2f u, Bsd
             return true;
         }
         default:
-            return false;  // nested TwoSided: invalid
+            return false;  // composites: bsdf_composite.h
     }
 }
 
@@ -221,53 +345,78 @@ CA_HD_INLINE bool isDeltaLocal(const Bsdf& b) {
            b.type == BsdfType::ThinDielectric;
 }
 
-/// A direction pair in the shading frame, mirrored to the front for the back of a twosided BSDF,
-/// with the concrete (non-twosided) BSDF that applies.
-struct LocalPair {
-    const Bsdf* bsdf;
-    Vec3f wo, wi;
-};
+/// The leaves of bsdf_composite.h's BSDF trees at `si` (everything but twosided, blendbsdf,
+/// mask and null above them), in world space; `flip`: under the back of a twosided.
+struct LeafOps {
+    Span<const Bsdf> bsdfs;
+    const SurfaceInteraction& si;
 
-CA_HD_INLINE LocalPair resolvePair(Span<const Bsdf> bsdfs, uint32_t id, const SurfaceInteraction& si,
-                                   Vec3f wo, Vec3f wi) {
-    const Frame frame(si.ns);
-    Vec3f woL = frame.toLocal(wo), wiL = frame.toLocal(wi);
-    const Resolved r = resolve(bsdfs, id, woL.z);
-    if (r.flip) {
-        woL = flipZ(woL);
-        wiL = flipZ(wiL);
+    CA_HD_INLINE Vec3f normal() const { return si.ns; }
+
+    CA_HD_INLINE Spectrum eval(uint32_t id, bool flip, Vec3f wo, Vec3f wi) const {
+        const Resolved r = resolve(bsdfs, id, si, wo, flip);
+        if (!sameSide(r, wi)) return {};
+        Bsdf storage;
+        const Bsdf& b = applyBsdfTextures(*r.bsdf, si, storage);
+        return evalLocal(b, r.frame.toLocal(wo), r.frame.toLocal(wi)) * shadowTerminator(r, wi);
     }
-    return {r.bsdf, woL, wiL};
-}
+
+    CA_HD_INLINE Float pdf(uint32_t id, bool flip, Vec3f wo, Vec3f wi) const {
+        const Resolved r = resolve(bsdfs, id, si, wo, flip);
+        if (!sameSide(r, wi)) return 0;
+        Bsdf storage;
+        const Bsdf& b = applyBsdfTextures(*r.bsdf, si, storage);
+        return pdfLocal(b, r.frame.toLocal(wo), r.frame.toLocal(wi));
+    }
+
+    CA_HD_INLINE bool sample(uint32_t id, bool flip, Vec3f wo, Float uLobe, Vec2f u,
+                             BsdfSample& out) const {
+        const Resolved r = resolve(bsdfs, id, si, wo, flip);
+        Bsdf storage;
+        const Bsdf& b = applyBsdfTextures(*r.bsdf, si, storage);
+        if (!sampleLocal(b, r.frame.toLocal(wo), uLobe, u, out)) return false;
+        out.wi = r.frame.toWorld(out.wi);
+        out.weight = out.weight * shadowTerminator(r, out.wi);
+        return sameSide(r, out.wi);
+    }
+
+    CA_HD_INLINE bool isDelta(uint32_t id) const {
+        if (bsdfs[id].type == BsdfType::BumpMap || bsdfs[id].type == BsdfType::NormalMap)
+            id = bsdfs[id].front;  // a perturbed frame changes no lobe
+        const Bsdf& b = bsdfs[id];
+        if (b.type == BsdfType::TwoSided)
+            return isDeltaLocal(bsdfs[b.front]) && isDeltaLocal(bsdfs[b.back]);
+        return isDeltaLocal(b);
+    }
+
+    /// blendbsdf weight / mask opacity (textured or not), clamped to [0, 1] as Mitsuba.
+    CA_HD_INLINE Float weight(const Bsdf& b) const {
+        Bsdf storage;
+        return clamp(applyBsdfTextures(b, si, storage).weight, Float(0), Float(1));
+    }
+};
 
 }  // namespace bsdf_detail
 
 /// f(wo, wi) · |cosθi| of the non-delta part of BSDF `id` at `si` (world-space unit directions).
 CA_HD_INLINE Spectrum evalBsdf(Span<const Bsdf> bsdfs, uint32_t id, const SurfaceInteraction& si,
                                Vec3f wo, Vec3f wi) {
-    const bsdf_detail::LocalPair p = bsdf_detail::resolvePair(bsdfs, id, si, wo, wi);
-    return bsdf_detail::evalLocal(*p.bsdf, p.wo, p.wi);
+    return bsdf_detail::compositeEval(bsdfs, bsdf_detail::LeafOps{bsdfs, si}, id, wo, wi);
 }
 
 /// Solid-angle pdf with which sampleBsdf draws `wi` from its non-delta part.
 CA_HD_INLINE Float pdfBsdf(Span<const Bsdf> bsdfs, uint32_t id, const SurfaceInteraction& si,
                            Vec3f wo, Vec3f wi) {
-    const bsdf_detail::LocalPair p = bsdf_detail::resolvePair(bsdfs, id, si, wo, wi);
-    return bsdf_detail::pdfLocal(*p.bsdf, p.wo, p.wi);
+    return bsdf_detail::compositePdf(bsdfs, bsdf_detail::LeafOps{bsdfs, si}, id, wo, wi);
 }
 
 /// Samples an incident direction. `uLobe` chooses between lobes (dielectric reflection or
-/// refraction), `u` the direction within one. Returns false when absorbed / no sample.
+/// refraction, blendbsdf and mask children), `u` the direction within one. Returns false when
+/// absorbed / no sample.
 CA_HD_INLINE bool sampleBsdf(Span<const Bsdf> bsdfs, uint32_t id, const SurfaceInteraction& si,
                              Vec3f wo, Float uLobe, Vec2f u, BsdfSample& out) {
-    const Frame frame(si.ns);
-    Vec3f woL = frame.toLocal(wo);
-    const bsdf_detail::Resolved r = bsdf_detail::resolve(bsdfs, id, woL.z);
-    if (r.flip) woL = bsdf_detail::flipZ(woL);
-    if (!bsdf_detail::sampleLocal(*r.bsdf, woL, uLobe, u, out)) return false;
-    if (r.flip) out.wi = bsdf_detail::flipZ(out.wi);
-    out.wi = frame.toWorld(out.wi);
-    return true;
+    return bsdf_detail::compositeSample(bsdfs, bsdf_detail::LeafOps{bsdfs, si}, id, wo, uLobe, u,
+                                        out);
 }
 
 /// Mitsuba's diffuse Fresnel reflectance (fresnel_diffuse_reflectance): the fraction of a
@@ -305,11 +454,8 @@ CA_HD_INLINE Bsdf makePlastic(Float etaRatio, Spectrum diffuse, Spectrum specula
 
 /// True when the BSDF has no non-delta component (next-event estimation is pointless).
 CA_HD_INLINE bool isDeltaBsdf(Span<const Bsdf> bsdfs, uint32_t id) {
-    const Bsdf& b = bsdfs[id];
-    if (b.type == BsdfType::TwoSided)
-        return bsdf_detail::isDeltaLocal(bsdfs[b.front]) &&
-               bsdf_detail::isDeltaLocal(bsdfs[b.back]);
-    return bsdf_detail::isDeltaLocal(b);
+    const SurfaceInteraction si{};
+    return bsdf_detail::compositeIsDelta(bsdfs, bsdf_detail::LeafOps{bsdfs, si}, id);
 }
 
 }  // namespace caustica

@@ -1,4 +1,6 @@
-// interaction.h — what a ray hit: position, normals, uv and the shape's material and emitter.
+// interaction.h — what a ray hit: position, normals, uv, the surface's dp/du and dp/dv, and the
+// shape's material and emitter. The BSDFs' local frame is shadingFrame(si), built from the shading
+// normal and dp/du as Mitsuba 3 does (SurfaceInteraction::initialize_sh_frame).
 #pragma once
 
 #include "caustica/scene/ray.h"
@@ -11,14 +13,49 @@ struct SurfaceInteraction {
     Vec3f ng;        // geometric normal, on the shape's outside (flip_normals applied)
     Vec3f ns;        // shading normal, same hemisphere as ng
     Vec2f uv;
+    Vec3f dpdu, dpdv;  // position partials along uv, world space; zero = unknown (Frame(ns) is used)
     uint32_t primId = kNoPrimitive;
     uint32_t shape = 0;
+    TextureView textures;  // the scene's textures, for BSDF parameters (texture.h)
 };
+
+/// Mitsuba's shading frame: n = ns, s = dp/du made orthogonal to n (Gram–Schmidt), t = n × s;
+/// without a usable dp/du, Mitsuba's coordinate_system(ns) (Frame(ns)).
+CA_HD_INLINE Frame shadingFrame(const SurfaceInteraction& si) {
+    const Vec3f s = si.dpdu - si.ns * dot(si.ns, si.dpdu);
+    const Float len2 = lengthSquared(s);
+    if (!(len2 > Float(1e-30)) || !(len2 < Float(1e30))) return Frame(si.ns);
+    Frame f;
+    f.n = si.ns;
+    f.s = s * (1 / std::sqrt(len2));
+    f.t = cross(f.n, f.s);
+    return f;
+}
+
+/// Mitsuba's cylinder at the point si.p (reprojected onto the surface): uv = (φ / 2π, h / length),
+/// dp/du = 2π r (tangent), dp/dv = length · axis, normal away from the axis unless flipped.
+CA_HD_INLINE void cylinderInteraction(const Cylinder& c, bool flip, SurfaceInteraction& si) {
+    const Vec3f q = si.p - c.base;
+    const Float h = dot(q, c.axis);
+    const Vec3f yAxis = cross(c.axis, c.xAxis);
+    const Float x = dot(q, c.xAxis), y = dot(q, yAxis);
+    Float phi = std::atan2(y, x);
+    if (phi < 0) phi += 2 * kPi;
+    const Float cosPhi = std::cos(phi), sinPhi = std::sin(phi);
+    Vec3f n = c.xAxis * cosPhi + yAxis * sinPhi;
+    si.p = c.base + c.axis * h + n * c.radius;
+    si.uv = Vec2f(phi * kInv2Pi, h / c.length);
+    si.dpdu = (yAxis * cosPhi - c.xAxis * sinPhi) * (2 * kPi * c.radius);
+    si.dpdv = c.axis * c.length;
+    if (flip) n = -n;
+    si.ng = si.ns = n;
+}
 
 /// Fills the interaction for a valid hit of `ray`.
 CA_HD_INLINE SurfaceInteraction computeInteraction(const SceneView& scene, const Ray& ray, const Hit& hit) {
     SurfaceInteraction si;
     si.primId = hit.primId;
+    si.textures = scene.textureView();
     si.p = ray.o + ray.d * hit.t;
     if (hit.primId < scene.numTriangles()) {
         const Vec3u tri = scene.triangles[hit.primId];
@@ -37,9 +74,22 @@ CA_HD_INLINE SurfaceInteraction computeInteraction(const SceneView& scene, const
                 si.ng = faceForward(si.ng, si.ns);
             }
         }
+        // Mitsuba's mesh: dp/du, dp/dv from the uv parameterisation, else (or when the uv
+        // triangle is degenerate) coordinate_system of the unflipped face normal.
+        const Frame faceFrame(normalize(cross(p1 - p0, p2 - p0)));
+        si.dpdu = faceFrame.s;
+        si.dpdv = faceFrame.t;
         if (shape.hasUVs) {
-            Vec2f uv = scene.uvs[tri.x] * b0 + scene.uvs[tri.y] * hit.b1 + scene.uvs[tri.z] * hit.b2;
-            si.uv = uv;
+            const Vec2f uv0 = scene.uvs[tri.x], uv1 = scene.uvs[tri.y], uv2 = scene.uvs[tri.z];
+            si.uv = uv0 * b0 + uv1 * hit.b1 + uv2 * hit.b2;
+            const Vec2f duv0 = uv1 - uv0, duv1 = uv2 - uv0;
+            const Float det = duv0.x * duv1.y - duv0.y * duv1.x;
+            if (det != 0) {
+                const Float invDet = 1 / det;
+                const Vec3f dp0 = p1 - p0, dp1 = p2 - p0;
+                si.dpdu = (dp0 * duv1.y - dp1 * duv0.y) * invDet;
+                si.dpdv = (dp1 * duv0.x - dp0 * duv1.x) * invDet;
+            }
         } else {
             si.uv = Vec2f(hit.b1, hit.b2);
         }
@@ -47,6 +97,10 @@ CA_HD_INLINE SurfaceInteraction computeInteraction(const SceneView& scene, const
             si.ng = -si.ng;
             si.ns = -si.ns;
         }
+    } else if (hit.primId >= scene.firstCylinder()) {
+        const Cylinder& c = scene.cylinders[hit.primId - scene.firstCylinder()];
+        si.shape = c.shape;
+        cylinderInteraction(c, scene.shapes[c.shape].flipNormals, si);
     } else {
         const Sphere& s = scene.spheres[hit.primId - scene.numTriangles()];
         si.shape = s.shape;
@@ -55,6 +109,12 @@ CA_HD_INLINE SurfaceInteraction computeInteraction(const SceneView& scene, const
         Float phi = std::atan2(n.y, n.x);
         if (phi < 0) phi += 2 * kPi;
         si.uv = Vec2f(phi * kInv2Pi, std::acos(clamp(n.z, Float(-1), Float(1))) * kInvPi);
+        // Mitsuba's sphere: dp/du = 2π r (−y, x, 0), dp/dv = π r (z cosφ, z sinφ, −ρ) for the
+        // local unit-sphere point (x, y, z), ρ = sqrt(x² + y²) (dp/dv = (1, 0, 0) at the poles).
+        const Float rho = std::sqrt(n.x * n.x + n.y * n.y);
+        si.dpdu = Vec3f(-n.y, n.x, 0) * (2 * kPi * s.radius);
+        si.dpdv = rho > 0 ? Vec3f(n.z * n.x / rho, n.z * n.y / rho, -rho) * (kPi * s.radius)
+                          : Vec3f(1, 0, 0) * (kPi * s.radius);
         if (scene.shapes[s.shape].flipNormals) n = -n;
         si.ng = si.ns = n;
     }

@@ -5,6 +5,8 @@
 #pragma once
 
 #include "caustica/scene/interaction.h"
+#include "caustica/scene/light_delta.h"
+#include "caustica/scene/light_envmap.h"
 #include "caustica/util/sampling.h"
 
 namespace caustica {
@@ -107,6 +109,37 @@ CA_HD_INLINE bool sampleLight(const SceneView& scene, Vec3f refP, Float uSelect,
             out.pdf = uniformSpherePdf() * selPdf;
             return true;
         }
+        case LightType::Spot: {  // light_delta.h
+            const Vec3f d = light.position - refP;
+            const Float d2 = lengthSquared(d);
+            if (!(d2 > 0)) return false;
+            out.p = light.position;
+            out.dist = std::sqrt(d2);
+            out.wi = d * (1 / out.dist);
+            out.Le = spotIntensity(light, -out.wi) * (1 / d2);
+            out.pdf = selPdf;
+            out.delta = true;
+            return !out.Le.isBlack();
+        }
+        case LightType::Directional: {  // light_delta.h; Mitsuba's point 2 radii away
+            out.wi = -light.direction;
+            const Float radius = max(light.sceneRadius, length(refP - light.sceneCenter));
+            out.p = refP + out.wi * (2 * radius);
+            out.dist = kInfinity;
+            out.Le = light.radiance;
+            out.pdf = selPdf;
+            out.delta = true;
+            return true;
+        }
+        case LightType::EnvMap: {  // light_envmap.h
+            Float pdf;
+            if (!envMapSample(scene, light, u, out.wi, pdf)) return false;
+            out.p = refP + out.wi * (2 * light.sceneRadius);
+            out.dist = kInfinity;
+            out.Le = envMapRadiance(scene, light, out.wi);
+            out.pdf = pdf * selPdf;
+            return true;
+        }
         case LightType::Area:
             break;
     }
@@ -131,6 +164,17 @@ CA_HD_INLINE bool sampleLight(const SceneView& scene, Vec3f refP, Float uSelect,
         hit.b2 = b.y;
         // The same point and front normal as a ray hit would produce (flip_normals included).
         const SurfaceInteraction si = computeInteraction(scene, Ray{refP, Vec3f(0), 0}, hit);
+        out.p = si.p;
+        out.n = si.ng;
+        pdf = light_detail::areaToSolidAngle(refP, out.p, out.n, light.area);
+    } else if (shape.type == ShapeType::Cylinder) {
+        // Uniform by area as Mitsuba's Cylinder::sample_position: height u.x, angle 2π u.y.
+        const Cylinder& c = scene.cylinders[shape.primOffset];
+        SurfaceInteraction si;
+        const Float phi = 2 * kPi * u.y;
+        const Vec3f radial = c.xAxis * std::cos(phi) + cross(c.axis, c.xAxis) * std::sin(phi);
+        si.p = c.base + c.axis * (u.x * c.length) + radial * c.radius;
+        cylinderInteraction(c, shape.flipNormals, si);
         out.p = si.p;
         out.n = si.ng;
         pdf = light_detail::areaToSolidAngle(refP, out.p, out.n, light.area);
@@ -179,8 +223,11 @@ CA_HD_INLINE Float pdfAreaLight(const SceneView& scene, uint32_t light, Vec3f re
 }
 
 /// Solid-angle pdf (incl. selection) of sampling direction `dir` from the environment light.
-CA_HD_INLINE Float pdfEnvironmentLight(const SceneView& scene, Vec3f /*dir*/) {
+CA_HD_INLINE Float pdfEnvironmentLight(const SceneView& scene, Vec3f dir) {
     if (scene.environmentLight < 0) return 0;
+    const Light& env = scene.lights[uint32_t(scene.environmentLight)];
+    if (env.type == LightType::EnvMap)
+        return envMapPdf(scene, env, dir) * light_detail::selectionPdf(scene);
     return uniformSpherePdf() * light_detail::selectionPdf(scene);
 }
 
@@ -197,9 +244,11 @@ CA_HD_INLINE Spectrum emittedRadiance(const SceneView& scene, const SurfaceInter
 
 /// Radiance arriving from the environment along -dir (dir points away from the scene); zero
 /// when the scene has no environment light.
-CA_HD_INLINE Spectrum environmentRadiance(const SceneView& scene, Vec3f /*dir*/) {
+CA_HD_INLINE Spectrum environmentRadiance(const SceneView& scene, Vec3f dir) {
     if (scene.environmentLight < 0) return {};
-    return scene.lights[uint32_t(scene.environmentLight)].radiance;
+    const Light& env = scene.lights[uint32_t(scene.environmentLight)];
+    if (env.type == LightType::EnvMap) return envMapRadiance(scene, env, dir);
+    return env.radiance;
 }
 
 }  // namespace caustica

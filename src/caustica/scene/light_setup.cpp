@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "caustica/scene/light_envmap_setup.h"
 #include "caustica/util/error.h"
 
 namespace caustica {
@@ -61,6 +62,18 @@ void setupSphereLight(const Scene& scene, Light& light, const Shape& shape, size
     light.cdfCount = 0;
 }
 
+/// Mitsuba's cylinder emitter samples its lateral surface uniformly: area 2π r length.
+void setupCylinderLight(const Scene& scene, Light& light, const Shape& shape, size_t index) {
+    if (shape.primOffset >= scene.cylinders.size())
+        fail(index, "emitting cylinder references a cylinder out of range");
+    const Cylinder& c = scene.cylinders[shape.primOffset];
+    const double area = 2.0 * double(kPi) * double(c.radius) * double(c.length);
+    if (!(area > 0) || !std::isfinite(area)) throw Error("area emitter on a shape with zero area");
+    light.area = Float(area);
+    light.cdfOffset = 0;
+    light.cdfCount = 0;
+}
+
 /// Mitsuba's constant emitter: the bounding sphere of the scene's bounding box, slightly enlarged
 /// and never of zero radius (math::RayEpsilon = 1500 float epsilons).
 void setupEnvironment(const Scene& scene, Light& light) {
@@ -90,17 +103,25 @@ void finalizeLights(Scene& scene) {
                 const Shape& shape = scene.shapes[light.shape];
                 if (shape.type == ShapeType::Mesh)
                     setupMeshLight(scene, light, shape, i);
+                else if (shape.type == ShapeType::Cylinder)
+                    setupCylinderLight(scene, light, shape, i);
                 else
                     setupSphereLight(scene, light, shape, i);
                 break;
             }
             case LightType::Constant:
+            case LightType::EnvMap:  // Mitsuba 3 too allows one environment emitter per scene
                 if (scene.environmentLight >= 0)
-                    fail(i, "more than one environment (constant) emitter in the scene");
+                    fail(i, "more than one environment (constant, envmap) emitter in the scene");
                 scene.environmentLight = int32_t(i);
                 setupEnvironment(scene, light);
+                if (light.type == LightType::EnvMap) setupEnvMapDistribution(scene, light);
+                break;
+            case LightType::Directional:
+                setupEnvironment(scene, light);  // shadow rays start outside the scene's sphere
                 break;
             case LightType::Point:
+            case LightType::Spot:
                 break;
         }
     }

@@ -11,6 +11,7 @@
 #include "caustica/scene/camera.h"
 #include "caustica/scene/light_data.h"
 #include "caustica/scene/shape.h"
+#include "caustica/scene/texture.h"
 #include "caustica/util/span.h"
 
 namespace caustica {
@@ -24,9 +25,24 @@ struct FilterDesc {
     Float stddev = 0.5f;   // gaussian only
 };
 
+enum class ToneMapMethod : uint32_t { Gamma, Reinhard };
+
+/// Mitsuba's ldrfilm (0.6; Mitsuba 3 has none): how PNG output maps radiance to 8 bits
+/// (film/tonemap.h). Without an ldrfilm PNGs are plain sRGB and the default output is EXR.
+struct ToneMapDesc {
+    bool ldr = false;                    // the film is an ldrfilm: default output .png
+    ToneMapMethod method = ToneMapMethod::Gamma;
+    Float gamma = -1;                    // -1: the sRGB curve; else v^(1/gamma)
+    Float exposure = 0;                  // gamma method: radiance x 2^exposure
+    Float key = 0.18f, burn = 0;         // reinhard: key value and burn-out (0..1)
+};
+
+/// The rendered image: width x height pixels (a crop window's size when cropped; the camera
+/// holds the full size and the window's offset).
 struct FilmDesc {
     int width = 768, height = 576;
     FilterDesc filter;
+    ToneMapDesc tonemap;
 };
 
 enum class IntegratorType : uint32_t { Path, Direct, Mlt };
@@ -56,7 +72,17 @@ struct IntegratorDesc {
     int maxDepth = -1;          // Mitsuba's meaning: longest path in segments; -1 = unbounded
     int rrDepth = 5;            // Russian roulette from this depth on
     bool hideEmitters = false;  // directly visible emitters render black
+    // mlt (primary-sample-space Metropolis over the path tracer; integrators/mlt)
+    uint32_t mltChains = 0;                  // 0: the renderer's default
+    uint64_t mltBootstrapSamples = 0;        // 0: the renderer's default
+    Float mltLargeStepProbability = 0.1f;
+    uint32_t mltProposals = 1;               // split-transition proposals per step
+    int emitterSamples = 1;     // direct: light samples per camera sample (emitter_samples)
+    int bsdfSamples = 1;        // direct: BSDF samples per camera sample (bsdf_samples)
 };
+
+/// World-space bounds of an analytic cylinder (scene.cpp).
+Bounds3f cylinderBounds(const Cylinder& c);
 
 struct SceneView {
     Span<const Vec3f> positions;      // all mesh vertices, world space
@@ -65,18 +91,30 @@ struct SceneView {
     Span<const Vec3u> triangles;      // global vertex indices
     Span<const uint32_t> triangleShape;  // shape of each triangle
     Span<const Sphere> spheres;
+    Span<const Cylinder> cylinders;
     Span<const Shape> shapes;
     Span<const Bsdf> bsdfs;
     Span<const Light> lights;
     Span<const float> lightCdf;       // per-area-light triangle CDFs (see Light::cdfOffset)
+    Span<const Spectrum> lightTexels; // envmap texels (see Light::texOffset)
     int32_t environmentLight = -1;    // index of the constant emitter, -1 if none
     Camera camera;
+    Span<const Texture> textures;     // BSDF textures (texture.h)
+    Span<const Spectrum> texels;      // bitmap texels of `textures` (Texture::texelOffset)
+
+    CA_HD TextureView textureView() const { return {textures, texels}; }
 
     CA_HD uint32_t numTriangles() const { return uint32_t(triangles.size()); }
-    CA_HD uint32_t numPrimitives() const { return uint32_t(triangles.size() + spheres.size()); }
-    /// The shape a primitive id (triangles first, then spheres) belongs to.
+    /// Primitive ids: triangles first, then spheres, then cylinders.
+    CA_HD uint32_t numPrimitives() const {
+        return uint32_t(triangles.size() + spheres.size() + cylinders.size());
+    }
+    CA_HD uint32_t firstCylinder() const { return uint32_t(triangles.size() + spheres.size()); }
+    /// The shape a primitive id belongs to.
     CA_HD uint32_t shapeOf(uint32_t primId) const {
-        return primId < numTriangles() ? triangleShape[primId] : spheres[primId - numTriangles()].shape;
+        if (primId < numTriangles()) return triangleShape[primId];
+        if (primId < firstCylinder()) return spheres[primId - numTriangles()].shape;
+        return cylinders[primId - firstCylinder()].shape;
     }
 };
 
@@ -86,10 +124,14 @@ struct Scene {
     std::vector<Vec3u> triangles;
     std::vector<uint32_t> triangleShape;
     std::vector<Sphere> spheres;
+    std::vector<Cylinder> cylinders;
     std::vector<Shape> shapes;
     std::vector<Bsdf> bsdfs;
     std::vector<Light> lights;
     std::vector<float> lightCdf;
+    std::vector<Spectrum> lightTexels;
+    std::vector<Texture> textures;
+    std::vector<Spectrum> texels;
     int32_t environmentLight = -1;
 
     Camera camera;
@@ -102,15 +144,19 @@ struct Scene {
     SceneView view() const {
         SceneView v;
         v.positions = positions; v.normals = normals; v.uvs = uvs; v.triangles = triangles;
-        v.triangleShape = triangleShape; v.spheres = spheres; v.shapes = shapes; v.bsdfs = bsdfs;
-        v.lights = lights; v.lightCdf = lightCdf; v.environmentLight = environmentLight;
+        v.triangleShape = triangleShape; v.spheres = spheres; v.cylinders = cylinders; v.shapes = shapes; v.bsdfs = bsdfs;
+        v.lights = lights; v.lightCdf = lightCdf; v.lightTexels = lightTexels;
+        v.environmentLight = environmentLight;
         v.camera = camera;
+        v.textures = textures; v.texels = texels;
         return v;
     }
-    uint32_t numPrimitives() const { return uint32_t(triangles.size() + spheres.size()); }
+    uint32_t numPrimitives() const {
+        return uint32_t(triangles.size() + spheres.size() + cylinders.size());
+    }
     /// World-space bounds of all geometry.
     Bounds3f bounds() const;
-    /// Bounds of one primitive (triangles first, then spheres).
+    /// Bounds of one primitive (triangles first, then spheres, then cylinders).
     Bounds3f primitiveBounds(uint32_t primId) const;
 };
 

@@ -7,10 +7,11 @@
 
 namespace caustica {
 
-enum class ShapeType : uint32_t { Mesh, Sphere };
+enum class ShapeType : uint32_t { Mesh, Sphere, Cylinder };
 
 /// One shape of the scene. A mesh owns triangles [primOffset, primOffset + primCount) of the
-/// global triangle array; a sphere owns sphere record primOffset (primCount = 1).
+/// global triangle array; a sphere owns sphere record primOffset (primCount = 1), a cylinder
+/// cylinder record primOffset.
 struct Shape {
     ShapeType type = ShapeType::Mesh;
     uint32_t primOffset = 0;
@@ -27,6 +28,19 @@ struct Sphere {
     Vec3f center;
     Float radius = 1;
     uint32_t shape = 0;  // index into SceneView::shapes
+};
+
+/// An analytic open cylinder (Mitsuba's cylinder: no caps), world space: the points at distance
+/// `radius` from the segment base + [0, length] * axis. uv = (φ / 2π, height / length), φ measured
+/// from `xAxis` towards cross(axis, xAxis). Normals point away from the axis unless the shape
+/// flips them.
+struct Cylinder {
+    Vec3f base;
+    Float radius = 1;
+    Vec3f axis{0, 0, 1};   // unit
+    Float length = 1;
+    Vec3f xAxis{1, 0, 0};  // unit, perpendicular to axis
+    uint32_t shape = 0;    // index into SceneView::shapes
 };
 
 }  // namespace caustica

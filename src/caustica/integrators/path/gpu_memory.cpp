@@ -32,7 +32,8 @@ GpuMemoryEstimate estimateGpuMemory(const GpuRenderSizes& s) {
     e.scene = s.positions * sizeof(Vec3f) + s.normals * sizeof(Vec3f) + s.uvs * sizeof(Vec2f) +
               s.triangles * sizeof(Vec3u) + s.triangleShape * sizeof(uint32_t) +
               s.spheres * sizeof(Sphere) + s.shapes * sizeof(Shape) + s.bsdfs * sizeof(Bsdf) +
-              s.lights * sizeof(Light) + s.lightCdf * sizeof(float);
+              s.lights * sizeof(Light) + s.lightCdf * sizeof(float) + s.cylinders * sizeof(Cylinder) +
+              s.lightTexels * sizeof(Spectrum) + s.textures * sizeof(Texture) + s.texels * sizeof(Spectrum);
     e.bvh = s.bvhNodes * sizeof(BvhNode) + s.bvhPrimIndices * sizeof(uint32_t) +
             s.bvhPrims * sizeof(BvhPrimitive);
     const size_t samples = size_t(std::max(s.width, 0)) * size_t(std::max(s.height, 0)) *
@@ -64,6 +65,10 @@ GpuRenderSizes gpuRenderSizes(const Scene& scene, const Bvh& bvh, int samplesPer
     s.bsdfs = scene.bsdfs.size();
     s.lights = scene.lights.size();
     s.lightCdf = scene.lightCdf.size();
+    s.cylinders = scene.cylinders.size();
+    s.lightTexels = scene.lightTexels.size();
+    s.textures = scene.textures.size();
+    s.texels = scene.texels.size();
     s.bvhNodes = bvh.nodes.size();
     s.bvhPrimIndices = bvh.primIndices.size();
     s.bvhPrims = bvh.prims.size();

@@ -29,7 +29,7 @@ uint64_t renderPathPass(const Scene& scene, const Accel& accel, const PathSettin
                 IndependentSampler sampler(pixel, uint64_t(firstSampleIndex + s), seed);
                 Vec2f jitter = sampler.get2D();
                 Vec2f pos(Float(x) + jitter.x, Float(y) + jitter.y);
-                Ray ray = generateCameraRay(view.camera, pos);
+                Ray ray = sampleCameraRay(view.camera, pos, sampler);
                 Spectrum L = pathRadiance(view, intersector, sampler, ray, settings, rays);
                 pass.at(x, y, s) = PixelSample{pos, L};
             }

@@ -62,7 +62,7 @@ uint64_t traceChunk(const SceneView& scene, const Intersector& accel, const Path
         Vec2f pos(Float(x) + jitter.x, Float(y) + jitter.y);
         pass.samples[slot].pos = pos;
         w.live[i] = uint32_t(i);
-        w.alive[i] = startPath(w.state[i], generateCameraRay(scene.camera, pos), settings);
+        w.alive[i] = startPath(w.state[i], sampleCameraRay(scene.camera, pos, sampler), settings);
     });
     size_t liveCount = compactQueue(device, w, w.alive, w.live, n, w.next);
     std::swap(w.live, w.next);

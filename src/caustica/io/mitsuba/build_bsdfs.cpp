@@ -16,10 +16,16 @@
 // | thindielectric | int_ior (bk7), ext_ior (air), specular_reflectance (1),                    |
 // |                | specular_transmittance (1)                                                |
 // | twosided       | one nested/referenced bsdf (both sides) or two (front, back)              |
+// | bumpmap        | a nested texture (height field), a nested bsdf, scale (1)                 |
+// | normalmap      | a nested texture named normalmap, a nested bsdf                           |
+// Colour parameters and alpha / alpha_u / alpha_v may be textures (build_textures.h).
+// roughplastic, blendbsdf, mask, null, principled: build_bsdfs_layered.cpp.
 #include <algorithm>
 #include <cctype>
 
+#include "caustica/io/mitsuba/build_bsdfs_layered.h"
 #include "caustica/io/mitsuba/build_context.h"
+#include "caustica/io/mitsuba/build_textures.h"
 #include "caustica/io/mitsuba/plugin_table.h"
 #include "caustica/scene/bsdf.h"
 
@@ -99,7 +105,7 @@ void readConductorIor(const Params& p, Bsdf& b) {
 
 /// Mitsuba's MicrofacetDistribution parameters: distribution ("beckmann"), alpha or
 /// alpha_u + alpha_v (0.1), sample_visible (true; only changes the variance).
-void readRoughness(BuildContext& ctx, const Params& p, Bsdf& b) {
+void readRoughness(BuildContext& ctx, Params& p, Bsdf& b) {
     std::string dist = p.getString("distribution", "beckmann");  // Mitsuba 3's default
     std::transform(dist.begin(), dist.end(), dist.begin(),
                    [](unsigned char c) { return char(std::tolower(c)); });
@@ -109,15 +115,15 @@ void readRoughness(BuildContext& ctx, const Params& p, Bsdf& b) {
         b.distribution = MicrofacetType::GGX;
     else
         p.fail(*p.find("distribution"), "must be 'beckmann' or 'ggx', not '" + dist + "'");
-    if (p.has("alpha")) {
-        if (p.has("alpha_u") || p.has("alpha_v"))
+    if (hasParam(p, "alpha")) {
+        if (hasParam(p, "alpha_u") || hasParam(p, "alpha_v"))
             p.fail("give either 'alpha' or 'alpha_u' and 'alpha_v', not both");
-        b.alphaU = b.alphaV = p.getFloat("alpha");
-    } else if (p.has("alpha_u") || p.has("alpha_v")) {
-        if (!p.has("alpha_u") || !p.has("alpha_v"))
+        b.alphaU = b.alphaV = readFloatParam(ctx, p, "alpha", 0.1f, b, BsdfParam::Alpha);
+    } else if (hasParam(p, "alpha_u") || hasParam(p, "alpha_v")) {
+        if (!hasParam(p, "alpha_u") || !hasParam(p, "alpha_v"))
             p.fail("'alpha_u' and 'alpha_v' must be given together");
-        b.alphaU = p.getFloat("alpha_u");
-        b.alphaV = p.getFloat("alpha_v");
+        b.alphaU = readFloatParam(ctx, p, "alpha_u", 0.1f, b, BsdfParam::AlphaU);
+        b.alphaV = readFloatParam(ctx, p, "alpha_v", 0.1f, b, BsdfParam::AlphaV);
     }
     if (b.alphaU < 0 || b.alphaV < 0) p.fail("roughness (alpha) must not be negative");
     if (b.alphaU < 1e-4f || b.alphaV < 1e-4f) {
@@ -132,20 +138,22 @@ void readRoughness(BuildContext& ctx, const Params& p, Bsdf& b) {
     p.getBool("sample_visible", true);  // only changes the variance, never the expected image
 }
 
-Bsdf diffuse(BuildContext&, Params& p) {
+Bsdf diffuse(BuildContext& ctx, Params& p) {
     Bsdf b;
     b.type = BsdfType::Diffuse;
-    b.reflectance = p.getSpectrum("reflectance", Spectrum(0.5f));
+    b.reflectance = readSpectrumParam(ctx, p, "reflectance", Spectrum(0.5f), b, BsdfParam::Reflectance);
     return b;
 }
 
-Bsdf dielectric(BuildContext&, Params& p) {
+Bsdf dielectric(BuildContext& ctx, Params& p) {
     Bsdf b;
     b.type = BsdfType::Dielectric;
     Float intIor = readIor(p, "int_ior", 1.5046f), extIor = readIor(p, "ext_ior", 1.000277f);
     b.etaRatio = intIor / extIor;
-    b.reflectance = p.getSpectrum("specular_reflectance", Spectrum(1.0f));
-    b.transmittance = p.getSpectrum("specular_transmittance", Spectrum(1.0f));
+    b.reflectance = readSpectrumParam(ctx, p, "specular_reflectance", Spectrum(1.0f), b,
+                                      BsdfParam::Reflectance);
+    b.transmittance = readSpectrumParam(ctx, p, "specular_transmittance", Spectrum(1.0f), b,
+                                        BsdfParam::Transmittance);
     return b;
 }
 
@@ -162,11 +170,12 @@ Bsdf thinDielectric(BuildContext& ctx, Params& p) {
     return b;
 }
 
-Bsdf conductor(BuildContext&, Params& p) {
+Bsdf conductor(BuildContext& ctx, Params& p) {
     Bsdf b;
     b.type = BsdfType::Conductor;
     readConductorIor(p, b);
-    b.reflectance = p.getSpectrum("specular_reflectance", Spectrum(1.0f));
+    b.reflectance = readSpectrumParam(ctx, p, "specular_reflectance", Spectrum(1.0f), b,
+                                      BsdfParam::Reflectance);
     return b;
 }
 
@@ -175,15 +184,22 @@ Bsdf roughConductor(BuildContext& ctx, Params& p) {
     b.type = BsdfType::RoughConductor;
     readRoughness(ctx, p, b);
     readConductorIor(p, b);
-    b.reflectance = p.getSpectrum("specular_reflectance", Spectrum(1.0f));
+    b.reflectance = readSpectrumParam(ctx, p, "specular_reflectance", Spectrum(1.0f), b,
+                                      BsdfParam::Reflectance);
     return b;
 }
 
-Bsdf plastic(BuildContext&, Params& p) {
+Bsdf plastic(BuildContext& ctx, Params& p) {
     const Float intIor = readIor(p, "int_ior", 1.49f), extIor = readIor(p, "ext_ior", 1.000277f);
-    const Spectrum diffuse = p.getSpectrum("diffuse_reflectance", Spectrum(0.5f));
-    const Spectrum specular = p.getSpectrum("specular_reflectance", Spectrum(1.0f));
-    return makePlastic(intIor / extIor, diffuse, specular, p.getBool("nonlinear", false));
+    Bsdf tex;  // collects the textured parameters; their means set the sampling weight, as Mitsuba
+    const Spectrum diffuse =
+        readSpectrumParam(ctx, p, "diffuse_reflectance", Spectrum(0.5f), tex, BsdfParam::Diffuse);
+    const Spectrum specular = readSpectrumParam(ctx, p, "specular_reflectance", Spectrum(1.0f),
+                                                tex, BsdfParam::Reflectance);
+    Bsdf b = makePlastic(intIor / extIor, diffuse, specular, p.getBool("nonlinear", false));
+    for (uint32_t i = 0; i < tex.numTextures; ++i) b.textures[i] = tex.textures[i];
+    b.numTextures = tex.numTextures;
+    return b;
 }
 
 Bsdf twoSided(BuildContext& ctx, Params& p) {
@@ -200,9 +216,11 @@ Bsdf twoSided(BuildContext& ctx, Params& p) {
             child.type == "roughdielectric")
             p.failAtChild(children[i], "cannot wrap a transmissive bsdf (" + child.type + ")");
         sides[i] = ctx.bsdf(children[i]);
+        checkTwoSidedChild(ctx, p, children[i], sides[i]);
     }
     b.front = sides[0];
     b.back = children.size() == 2 ? sides[1] : sides[0];
+    checkBsdfTree(ctx, p, {b.front, b.back});
     return b;
 }
 
@@ -214,15 +232,30 @@ const PluginTable<BsdfFn> kBsdfPlugins{{{"conductor", conductor},
                                         {"roughconductor", roughConductor},
                                         {"roughdielectric", roughDielectric},
                                         {"thindielectric", thinDielectric},
-                                        {"twosided", twoSided}},
+                                        {"twosided", twoSided},
+                                        {"bumpmap", buildBumpMap},
+                                        {"normalmap", buildNormalMap},
+                                        {"roughplastic", buildRoughPlastic},
+                                        {"blendbsdf", buildBlendBsdf},
+                                        {"mask", buildMask},
+                                        {"null", buildNull},
+                                        {"principled", buildPrincipled}},
                                        {{"polarizer", "polarised rendering is not supported"},
                                         {"retarder", "polarised rendering is not supported"},
                                         {"pplastic", "polarised rendering is not supported"}}};
 
 }  // namespace
 
+Float readIorParam(const Params& p, const std::string& name, Float def) {
+    return readIor(p, name, def);
+}
+
+void readRoughnessParams(BuildContext& ctx, Params& p, Bsdf& b) { readRoughness(ctx, p, b); }
+
 Bsdf buildBsdfRecord(BuildContext& ctx, Params& params) {
-    return kBsdfPlugins.find(params)(ctx, params);
+    Bsdf b = kBsdfPlugins.find(params)(ctx, params);
+    checkTextureChildren(ctx, params);
+    return b;
 }
 
 }  // namespace caustica::mitsuba

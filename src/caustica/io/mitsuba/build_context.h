@@ -27,10 +27,12 @@ public:
     /// Mitsuba's BSDF for shapes without one (created once each): diffuse, reflectance 0.5, or
     /// reflectance 0 for a shape with an area emitter (as Mitsuba 3's Shape constructor does).
     uint32_t defaultBsdf(bool emitter = false);
-    /// `file` relative to the XML file that declared `object` (absolute paths unchanged).
+    /// `file` found in the scene's <path> folders (latest first), else relative to the XML file
+    /// that declared `object` (absolute paths unchanged).
     std::string resolvePath(const ObjectEntity& object, const std::string& file) const;
 
     std::set<int> used;  // objects built or referenced (unused named objects get a warning)
+    std::map<int, uint32_t> textureIndex;  // <texture> object -> Scene::textures (build_textures.cpp)
 
 private:
     std::map<int, uint32_t> bsdfIndex_;

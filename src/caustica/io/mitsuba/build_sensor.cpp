@@ -1,81 +1,24 @@
-// build_sensor.cpp — Mitsuba 3's perspective sensor with its film, reconstruction filter and
-// sampler -> Camera, FilmDesc and the sample count.
+// build_sensor.cpp — Mitsuba 3's projective sensors -> Camera (scene/camera.h); their film and
+// sampler are built by build_film.cpp.
 //
-// | plugin      | parameters (default)                                                      |
-// |-------------|---------------------------------------------------------------------------|
-// | perspective | fov or focal_length ("50mm"), fov_axis (x | y | diagonal | smaller |      |
-// |             | larger), near_clip (0.01), far_clip (10000), to_world (no scaling)        |
-// | hdrfilm     | width (768), height (576), rfilter (gaussian); pixel_format,             |
-// |             | component_format, file_format ignored; crop_* refused                    |
-// | box/tent/gaussian rfilter | tent: radius (1); gaussian: stddev (0.5), radius 4 stddev  |
-// | independent | sample_count (4), seed (0)                                                |
+// | plugin       | parameters (default)                                                    |
+// |--------------|-------------------------------------------------------------------------|
+// | perspective  | fov or focal_length ("50mm"), fov_axis (x | y | diagonal | smaller |    |
+// |              | larger), near_clip (0.01), far_clip (10000), to_world (no scaling)      |
+// | thinlens     | as perspective, plus aperture_radius (required), focus_distance         |
+// |              | (far_clip)                                                              |
+// | orthographic | near_clip, far_clip, to_world (its scale sets the extent: camera space  |
+// |              | spans [-1, 1] horizontally)                                             |
 #include <cmath>
 
 #include "caustica/io/mitsuba/build_context.h"
+#include "caustica/io/mitsuba/build_film.h"
 #include "caustica/io/mitsuba/plugin_table.h"
 #include "caustica/util/error.h"
 
 namespace caustica::mitsuba {
 
 namespace {
-
-/// At most one child of `category`; -1 when there is none.
-int singleChild(Params& p, const std::string& category) {
-    std::vector<int> c = p.takeChildren(category);
-    if (c.size() > 1) p.failAtChild(c[1], "takes at most one <" + category + ">");
-    return c.empty() ? -1 : c[0];
-}
-
-FilterDesc boxFilter(Params&) {
-    return {FilterType::Box, 0.5f, 0.5f};
-}
-
-FilterDesc tentFilter(Params& p) {
-    Float r = p.getFloat("radius", 1.0f);
-    if (!(r > 0)) p.fail(*p.find("radius"), "must be positive");
-    return {FilterType::Tent, r, 0.5f};
-}
-
-FilterDesc gaussianFilter(Params& p) {
-    Float s = p.getFloat("stddev", 0.5f);
-    if (!(s > 0)) p.fail(*p.find("stddev"), "must be positive");
-    return {FilterType::Gaussian, 4 * s, s};
-}
-
-using FilterFn = FilterDesc (*)(Params&);
-const PluginTable<FilterFn> kFilterPlugins{
-    {{"box", boxFilter}, {"gaussian", gaussianFilter}, {"tent", tentFilter}}};
-
-FilmDesc hdrFilm(BuildContext& ctx, Params& p) {
-    FilmDesc film;
-    film.width = p.getInt("width", 768);
-    film.height = p.getInt("height", 576);
-    if (film.width <= 0 || film.height <= 0 || film.width > 32768 || film.height > 32768 ||
-        int64_t(film.width) * film.height > (int64_t(1) << 28))
-        p.fail("absurd resolution " + std::to_string(film.width) + "x" +
-               std::to_string(film.height) + " (each side 1..32768, at most 2^28 pixels)");
-    for (const char* crop : {"crop_offset_x", "crop_offset_y", "crop_width", "crop_height"})
-        p.refuse(crop, "(film cropping) is not supported yet");
-    for (const char* ignored : {"pixel_format", "component_format", "file_format"})
-        p.ignore(ignored, ctx.warnings);
-    int rfilter = singleChild(p, "rfilter");
-    if (rfilter >= 0) {
-        ctx.used.insert(rfilter);
-        Params fp(ctx.desc, rfilter);
-        film.filter = kFilterPlugins.find(fp)(fp);
-        fp.finish(ctx.warnings);
-    }
-    return film;
-}
-
-void independentSampler(BuildContext& ctx, Params& p) {
-    int count = p.getInt("sample_count", 4);
-    if (count <= 0) p.fail(*p.find("sample_count"), "must be positive");
-    int seed = p.getInt("seed", 0);
-    if (seed < 0) p.fail(*p.find("seed"), "must not be negative");
-    ctx.scene.sampleCount = count;
-    ctx.scene.seed = uint64_t(seed);
-}
 
 /// Mitsuba 3's parse_fov: the horizontal field of view in degrees for the given aspect ratio.
 double horizontalFov(const Params& p, double aspect) {
@@ -110,48 +53,35 @@ double horizontalFov(const Params& p, double aspect) {
     p.fail(*p.find("fov_axis"), "must be x, y, diagonal, smaller or larger, not '" + axis + "'");
 }
 
-void perspectiveSensor(BuildContext& ctx, Params& p) {
+/// What every sensor shares: film (size, crop window), sampler, clip planes and to_world.
+void commonSensor(BuildContext& ctx, Params& p) {
     Scene& scene = ctx.scene;
-    int film = singleChild(p, "film");
-    if (film >= 0) {
-        ctx.used.insert(film);
-        Params fp(ctx.desc, film);
-        if (fp.object().type != "hdrfilm") {
-            const ObjectEntity& f = fp.object();
-            throw Error(f.where.file, f.where.line,
-                        "unsupported film type '" + f.type + "'" +
-                            (f.type == "specfilm" ? ": spectral rendering is not supported" : "") +
-                            " (supported: hdrfilm)");
-        }
-        scene.film = hdrFilm(ctx, fp);
-        fp.finish(ctx.warnings);
-    }
-    int sampler = singleChild(p, "sampler");
-    if (sampler >= 0) {
-        ctx.used.insert(sampler);
-        Params sp(ctx.desc, sampler);
-        if (sp.object().type != "independent") {
-            const ObjectEntity& s = sp.object();
-            throw Error(s.where.file, s.where.line,
-                        "unsupported sampler type '" + s.type + "' (supported: independent)");
-        }
-        independentSampler(ctx, sp);
-        sp.finish(ctx.warnings);
-    }
     Camera& cam = scene.camera;
     cam.width = scene.film.width;
     cam.height = scene.film.height;
-    const double aspect = double(cam.width) / double(cam.height);
-    const double fovX = horizontalFov(p, aspect);
-    cam.tanHalfX = Float(std::tan(0.5 * fovX * M_PI / 180.0));
-    cam.tanHalfY = Float(std::tan(0.5 * fovX * M_PI / 180.0) / aspect);
+    std::vector<int> films = p.takeChildren("film");
+    if (films.size() > 1) p.failAtChild(films[1], "takes at most one <film>");
+    if (!films.empty()) scene.film = buildFilm(ctx, films[0], cam);
+    std::vector<int> samplers = p.takeChildren("sampler");
+    if (samplers.size() > 1) p.failAtChild(samplers[1], "takes at most one <sampler>");
+    if (!samplers.empty()) buildSampler(ctx, samplers[0]);
     cam.nearClip = p.getFloat("near_clip", 1e-2f);
     cam.farClip = p.getFloat("far_clip", 1e4f);
     if (!(cam.nearClip > 0)) p.fail(*p.find("near_clip"), "must be positive");
     if (!(cam.nearClip < cam.farClip)) p.fail("'near_clip' must be smaller than 'far_clip'");
+    cam.worldFromCamera = p.getTransform("to_world");
+}
+
+/// Perspective and thin lens: field of view, no scaling in to_world (Mitsuba refuses it too).
+void projectiveSensor(BuildContext& ctx, Params& p) {
+    commonSensor(ctx, p);
+    Camera& cam = ctx.scene.camera;
+    const double aspect = double(cam.width) / double(cam.height);
+    const double fovX = horizontalFov(p, aspect);
+    cam.tanHalfX = Float(std::tan(0.5 * fovX * M_PI / 180.0));
+    cam.tanHalfY = Float(std::tan(0.5 * fovX * M_PI / 180.0) / aspect);
     for (const char* pp : {"principal_point_offset_x", "principal_point_offset_y"})
         p.refuse(pp, "(off-axis projection) is not supported yet");
-    cam.worldFromCamera = p.getTransform("to_world");
     for (int c = 0; c < 3; ++c) {
         Vec3f col(cam.worldFromCamera.m.m[0][c], cam.worldFromCamera.m.m[1][c],
                   cam.worldFromCamera.m.m[2][c]);
@@ -160,8 +90,39 @@ void perspectiveSensor(BuildContext& ctx, Params& p) {
     }
 }
 
+void perspectiveSensor(BuildContext& ctx, Params& p) {
+    ctx.scene.camera.type = CameraType::Perspective;
+    projectiveSensor(ctx, p);
+}
+
+/// Mitsuba 3's thinlens: aperture_radius is required (0 is a pinhole: Mitsuba warns and uses
+/// a radius of one float epsilon), focus_distance defaults to far_clip.
+void thinLensSensor(BuildContext& ctx, Params& p) {
+    Camera& cam = ctx.scene.camera;
+    cam.type = CameraType::ThinLens;
+    projectiveSensor(ctx, p);
+    cam.apertureRadius = p.getFloat("aperture_radius");
+    if (!(cam.apertureRadius >= 0)) p.fail(*p.find("aperture_radius"), "must not be negative");
+    cam.focusDistance = p.getFloat("focus_distance", cam.farClip);
+    if (!(cam.focusDistance > 0)) p.fail(*p.find("focus_distance"), "must be positive");
+}
+
+/// Mitsuba 3's orthographic: camera space spans x in [-1, 1] and y in [-1/aspect, 1/aspect];
+/// to_world (scale allowed) maps it into the scene.
+void orthographicSensor(BuildContext& ctx, Params& p) {
+    Camera& cam = ctx.scene.camera;
+    cam.type = CameraType::Orthographic;
+    commonSensor(ctx, p);
+    cam.tanHalfX = 1;
+    cam.tanHalfY = Float(double(cam.height) / double(cam.width));
+    const Vec3f axis = cam.worldFromCamera.applyVector(Vec3f(0, 0, 1));
+    if (!(length(axis) > 0)) p.fail(*p.find("to_world"), "must not collapse the view direction");
+}
+
 using SensorFn = void (*)(BuildContext&, Params&);
-const PluginTable<SensorFn> kSensorPlugins{{{"perspective", perspectiveSensor}}};
+const PluginTable<SensorFn> kSensorPlugins{{{"orthographic", orthographicSensor},
+                                            {"perspective", perspectiveSensor},
+                                            {"thinlens", thinLensSensor}}};
 
 }  // namespace
 

@@ -40,9 +40,16 @@ uint32_t BuildContext::defaultBsdf(bool emitter) {
 }
 
 std::string BuildContext::resolvePath(const ObjectEntity& object, const std::string& file) const {
-    std::filesystem::path p(file);
+    namespace fs = std::filesystem;
+    fs::path p(file);
     if (p.is_absolute()) return p.string();
-    return (std::filesystem::path(object.where.file).parent_path() / p).lexically_normal().string();
+    // Mitsuba's file resolver: the <path> folders (latest first), then the declaring file's folder.
+    std::error_code ec;
+    for (const std::string& dir : desc.searchPaths) {
+        fs::path candidate = (fs::path(dir) / p).lexically_normal();
+        if (fs::exists(candidate, ec)) return candidate.string();
+    }
+    return (fs::path(object.where.file).parent_path() / p).lexically_normal().string();
 }
 
 Scene buildScene(const SceneDescription& desc, std::vector<std::string>& warnings) {

@@ -83,7 +83,10 @@ struct SceneDescription {
     std::string file;                   // the main scene file
     std::vector<ObjectEntity> objects;  // nested objects included
     std::vector<int> topLevel;          // indices of the <scene>'s direct children
-    std::map<std::string, int> ids;     // id -> object index
+    std::map<std::string, int> ids;     // id -> object index (aliases included)
+    /// <path value="..."/> folders (absolute, latest first): searched for relative file names
+    /// before the folder of the XML file that names them, as Mitsuba's file resolver does.
+    std::vector<std::string> searchPaths;
 };
 
 }  // namespace caustica::mitsuba

@@ -19,16 +19,13 @@ namespace fs = std::filesystem;
 
 bool isObjectTag(std::string_view t) {
     return t == "shape" || t == "bsdf" || t == "emitter" || t == "sensor" || t == "film" ||
-           t == "rfilter" || t == "sampler" || t == "integrator";
+           t == "rfilter" || t == "sampler" || t == "integrator" || t == "texture";
 }
 
 /// Mitsuba elements caustica recognises but cannot honour yet: a clear refusal, not "unknown".
 const char* unsupportedTagReason(std::string_view t) {
     if (t == "medium" || t == "phase" || t == "volume")
         return "participating media are not supported";
-    if (t == "texture") return "textures are not supported yet";
-    if (t == "alias") return "<alias> is not supported; use the original id";
-    if (t == "path") return "<path> (extra search folders) is not supported; use relative paths";
     return nullptr;
 }
 
@@ -128,6 +125,8 @@ private:
         if (node.type() != pugi::node_element) return;
         const std::string tag = node.name();
         if (tag == "include") return parseInclude(f, node);
+        if (tag == "path") return parsePath(f, node);
+        if (tag == "alias") return parseAlias(f, node);
         if (tag == "default") {
             f.checkAttributes(node, {"name", "value"});
             std::string name = f.required(node, "name");
@@ -156,6 +155,29 @@ private:
         includeStack_.push_back(key);
         parseFile(target.string(), &f, node);
         includeStack_.pop_back();
+    }
+
+    /// <path value="dir"/>: a folder searched for relative file names, relative to this file.
+    void parsePath(const XmlFile& f, pugi::xml_node node) {
+        f.checkAttributes(node, {"value"});
+        fs::path dir = f.required(node, "value");
+        if (dir.is_relative()) dir = fs::path(f.path()).parent_path() / dir;
+        std::error_code ec;
+        if (!fs::is_directory(dir, ec))
+            f.fail(node, "<path>: folder '" + dir.lexically_normal().string() + "' not found");
+        desc_.searchPaths.insert(desc_.searchPaths.begin(), dir.lexically_normal().string());
+    }
+
+    /// <alias id="existing" as="other"/>: `other` names the same object. As in Mitsuba, the
+    /// object must be declared before the alias and `other` must be a new id.
+    void parseAlias(const XmlFile& f, pugi::xml_node node) {
+        f.checkAttributes(node, {"id", "as"});
+        const std::string id = f.required(node, "id"), as = f.required(node, "as");
+        auto it = desc_.ids.find(id);
+        if (it == desc_.ids.end())
+            f.fail(node, "<alias>: no object with id '" + id + "' is declared before it");
+        if (desc_.ids.count(as)) f.fail(node, "<alias>: id '" + as + "' is already used");
+        desc_.ids.emplace(as, it->second);
     }
 
     int parseObject(const XmlFile& f, pugi::xml_node node) {
@@ -193,13 +215,15 @@ private:
             ChildRef c{f.attribute(node, "name"), f.required(node, "id"), -1, f.where(node)};
             desc_.objects[size_t(parent)].children.push_back(c);
         } else if (isPropertyTag(tag) && !(tag == "spectrum" && node.attribute("type"))) {
-            Property p = parseProperty(f, node);
+            Property p = parseProperty(f, node, desc_.objects[size_t(parent)].category);
             for (const Property& q : desc_.objects[size_t(parent)].properties)
                 if (q.name == p.name)
                     f.fail(node, "parameter '" + p.name + "' is given twice (first at line " +
                                      std::to_string(q.where.line) + ")");
             desc_.objects[size_t(parent)].properties.push_back(std::move(p));
-        } else if (tag == "include" || tag == "default") {
+        } else if (tag == "alias") {
+            parseAlias(f, node);
+        } else if (tag == "include" || tag == "default" || tag == "path") {
             f.fail(node, "<" + tag + "> is supported only directly inside <scene>");
         } else {
             std::string name = f.attribute(node, "name");

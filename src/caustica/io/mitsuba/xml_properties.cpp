@@ -1,9 +1,11 @@
 #include "caustica/io/mitsuba/xml_properties.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 #include "caustica/io/mesh/text_parse.h"
+#include "caustica/io/mitsuba/spectrum_to_rgb.h"
 
 namespace caustica::mitsuba {
 
@@ -94,17 +96,50 @@ bool finiteMatrix(const Matrix4& m) {
     return true;
 }
 
-Spectrum spectrumValue(const XmlFile& f, const pugi::xml_node& n) {
+/// Mitsuba's conversion depends on where the spectrum is used: emitters (radiance, intensity)
+/// are not weighted by D65 nor clamped to 1; conductor eta/k are not clamped to 1.
+SpectrumUse spectrumUse(const std::string& category, const std::string& name) {
+    if (category == "emitter") return SpectrumUse::Emission;
+    if (name == "eta" || name == "k") return SpectrumUse::Unbounded;
+    return SpectrumUse::Reflectance;
+}
+
+/// <spectrum value="x"> or value="λ1:v1, λ2:v2, ..." (nm, increasing, at least two pairs,
+/// separated by commas and/or blanks), converted to linear RGB as Mitsuba 3's RGB variants do.
+Spectrum spectrumValue(const XmlFile& f, const pugi::xml_node& n, SpectrumUse use) {
     f.checkAttributes(n, {"name", "value", "filename"});
     if (f.has(n, "filename"))
-        f.fail(n, "<spectrum filename=...> (measured spectra from files) is not supported yet");
-    std::string value = f.required(n, "value");
+        f.fail(n, "<spectrum filename=...> (measured spectra from files) is not supported; give "
+                  "the values as wavelength:value pairs");
+    const std::string value = f.required(n, "value");
     std::vector<std::string_view> tok = meshio::tokenize(value);
-    if (tok.size() != 1 || value.find(':') != std::string::npos)
-        f.fail(n,
-               "<spectrum> with wavelength:value pairs is not supported yet; give a single "
-               "value or use <rgb>");
-    return Spectrum(Float(f.number(n, tok[0], "<spectrum> value")));
+    if (tok.size() == 1 && value.find(':') == std::string::npos) {
+        const double v = f.number(n, tok[0], "<spectrum> value");
+        if (v < 0) f.fail(n, "<spectrum> value must be non-negative");
+        return uniformSpectrumToRgb(v, use);
+    }
+    std::vector<double> wl, values;
+    std::string_view previous;
+    for (std::string_view t : tok) {
+        std::vector<std::string_view> pair = meshio::tokenize(t, ":");
+        if (pair.size() != 2 || t.front() == ':' || t.back() == ':' ||
+            std::count(t.begin(), t.end(), ':') != 1)
+            f.fail(n, "<spectrum>: cannot read " + quoteText(std::string(t)) +
+                          " as a wavelength:value pair");
+        const double w = f.number(n, pair[0], "<spectrum> wavelength");
+        const double v = f.number(n, pair[1], "<spectrum> value");
+        if (v < 0)
+            f.fail(n, "<spectrum>: value " + quoteText(std::string(pair[1])) + " at " +
+                          quoteText(std::string(pair[0])) + " nm must be non-negative");
+        if (!wl.empty() && !(w > wl.back()))
+            f.fail(n, "<spectrum>: wavelengths must increase (" + quoteText(std::string(pair[0])) +
+                          " nm follows " + quoteText(std::string(previous)) + " nm)");
+        previous = pair[0];
+        wl.push_back(w);
+        values.push_back(v);
+    }
+    if (wl.size() < 2) f.fail(n, "<spectrum> needs at least two wavelength:value pairs");
+    return spectrumListToRgb(wl, values, use);
 }
 
 }  // namespace
@@ -143,7 +178,7 @@ Transform parseTransform(const XmlFile& f, const pugi::xml_node& node) {
     return t;
 }
 
-Property parseProperty(const XmlFile& f, const pugi::xml_node& n) {
+Property parseProperty(const XmlFile& f, const pugi::xml_node& n, const std::string& category) {
     const std::string tag = n.name();
     Property p;
     p.where = f.where(n);
@@ -186,7 +221,7 @@ Property parseProperty(const XmlFile& f, const pugi::xml_node& n) {
             v.size() == 1 ? Spectrum(Float(v[0])) : Spectrum(Float(v[0]), Float(v[1]), Float(v[2]));
     } else if (tag == "spectrum") {
         p.type = PropertyType::Spectrum;
-        p.color = spectrumValue(f, n);
+        p.color = spectrumValue(f, n, spectrumUse(category, p.name));
     } else if (tag == "transform") {
         f.checkAttributes(n, {"name"});
         p.type = PropertyType::Transform;

@@ -1,0 +1,425 @@
+#include "caustica/integrators/mlt/mlt_integrator.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+#include <vector>
+
+#include "caustica/film/filter.h"
+#include "caustica/integrators/mlt/mlt_kernel.h"
+#include "caustica/parallel/buffer.h"
+#include "caustica/parallel/device.h"
+#include "caustica/parallel/primitives.h"
+#include "caustica/util/error.h"
+
+namespace caustica {
+
+MltStateKind parseMltStateKind(const std::string& name) {
+    if (name == "compact") return MltStateKind::Compact;
+    if (name == "float") return MltStateKind::Float;
+    throw Error("unknown MLT state '" + name + "' (use compact or float)");
+}
+MltSplatKind parseMltSplatKind(const std::string& name) {
+    if (name == "atomic") return MltSplatKind::Atomic;
+    if (name == "sort") return MltSplatKind::Sort;
+    throw Error("unknown MLT splat mode '" + name + "' (use atomic or sort)");
+}
+MltStart parseMltStart(const std::string& name) {
+    if (name == "bootstrap") return MltStart::Bootstrap;
+    if (name == "uniform") return MltStart::Uniform;
+    throw Error("unknown MLT start '" + name + "' (use bootstrap or uniform)");
+}
+
+uint32_t mltStoredBounces(const PathSettings& settings) {
+    if (settings.maxDepth < 0) return kMltUnboundedStoredBounces;
+    return std::min<uint32_t>(uint32_t(std::max(settings.maxDepth - 1, 0)), kMltMaxStoredBounces);
+}
+
+size_t mltBytesPerChain(MltStateKind kind, uint32_t storedBounces) {
+    const size_t samples = kind == MltStateKind::Compact ? CompactChainStore::bytesPerDims(storedBounces)
+                                                         : FloatChainStore::bytesPerDims(storedBounces);
+    return samples + sizeof(Vec2f) + sizeof(Spectrum) + sizeof(float) + sizeof(uint16_t);
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+/// Fraction of a filter's integral that falls inside [0, size) around each pixel centre, one
+/// axis: the splat sums of border pixels are divided by it (the path tracer's film normalises by
+/// the weights of the samples it has, which amounts to the same).
+std::vector<double> borderCoverage(const Filter& filter, int size) {
+    std::vector<double> coverage(size_t(size), 1.0);
+    const double integral = filter.integral(), r = filter.radius;
+    constexpr int kSteps = 4096;
+    for (int x = 0; x < size; ++x) {
+        const double c = x + 0.5;
+        if (c - r >= 0 && c + r <= size) continue;
+        const double lo = std::max(0.0, c - r), hi = std::min(double(size), c + r), h = (hi - lo) / kSteps;
+        double sum = 0;
+        for (int i = 0; i < kSteps; ++i) sum += filter.eval(Float(lo + (i + 0.5) * h - c));
+        coverage[size_t(x)] = sum * h / integral;
+    }
+    return coverage;
+}
+
+}  // namespace
+
+struct MltRenderer::Impl {
+    virtual ~Impl() = default;
+    virtual void bootstrap() = 0;
+    virtual uint64_t iterate() = 0;
+    virtual Image develop() const = 0;
+    MltStats stats;
+    MltSettings settings;
+    uint32_t pixels = 0;
+};
+
+namespace {
+
+template <class Store>
+class MltImpl final : public MltRenderer::Impl {
+public:
+    MltImpl(const Scene& scene, const Accel& accel, const PathSettings& path, const MltSettings& s, uint64_t seed)
+        : scene_(scene), accel_(accel), device_(Device::cpu()) {
+        settings = s;
+        if (s.chains == 0) throw Error("MLT needs at least one chain");
+        if (s.proposals == 0 || s.proposals > 64) throw Error("MLT proposals per step must be in 1..64");
+        if (!(s.largeStepProbability >= 0 && s.largeStepProbability <= 1))
+            throw Error("MLT large-step probability must be in [0, 1]");
+        if (!(s.mutation.s1 > 0 && s.mutation.s2 >= s.mutation.s1 && s.mutation.s2 < 1))
+            throw Error("MLT small-step sizes must satisfy 0 < s1 <= s2 < 1");
+        params_.seed = seed;
+        params_.proposals = s.proposals;
+        params_.largeStepProbability = s.largeStepProbability;
+        params_.mutation = s.mutation;
+        params_.path = path;
+        params_.width = scene.film.width;
+        params_.height = scene.film.height;
+        pixels_ = uint32_t(params_.width) * uint32_t(params_.height);
+        pixels = pixels_;
+        filter_ = Filter::fromDesc(scene.film.filter);
+        coverageX_ = borderCoverage(filter_, params_.width);
+        coverageY_ = borderCoverage(filter_, params_.height);
+
+        const uint32_t n = s.chains, k = s.proposals;
+        const uint32_t bounces = mltStoredBounces(path);
+        allocateStore(n, bounces);
+        pos_ = Buffer<Vec2f>(device_, n);
+        value_ = Buffer<Spectrum>(device_, n);
+        importance_ = Buffer<float>(device_, n);
+        usedDims_ = Buffer<uint16_t>(device_, n);
+        proposalDims_ = Buffer<uint16_t>(device_, size_t(n) * k);
+        proposalPos_ = Buffer<Vec2f>(device_, size_t(n) * k);
+        proposalValue_ = Buffer<Spectrum>(device_, size_t(n) * k);
+        proposalImportance_ = Buffer<float>(device_, size_t(n) * k);
+        proposalRays_ = Buffer<uint32_t>(device_, size_t(n) * k);
+        splats_ = Buffer<MltSplat>(device_, size_t(n) * (k + 1));
+        largeStepSum_ = Buffer<float>(device_, n);
+        largeSteps_ = Buffer<uint32_t>(device_, n);
+        accepted_ = Buffer<uint32_t>(device_, n);
+        image_ = Buffer<double>(device_, size_t(3) * pixels_);
+        image_.zero();
+        if (s.splat == MltSplatKind::Atomic) {
+            accum_ = Buffer<float>(device_, size_t(3) * pixels_);
+            accum_.zero();
+        } else {
+            sortKeys_ = Buffer<uint32_t>(device_, splats_.size());
+            sortValues_ = Buffer<uint32_t>(device_, splats_.size());
+            pixelStart_ = Buffer<uint32_t>(device_, size_t(pixels_) + 1);
+        }
+        stats.bytesPerChain = mltBytesPerChain(std::is_same_v<Store, CompactChainStore> ? MltStateKind::Compact
+                                                                                         : MltStateKind::Float,
+                                               bounces);
+        stats.stateBytes = stats.bytesPerChain * n;
+        stats.scratchBytes = proposalPos_.size() * (sizeof(Vec2f) + sizeof(Spectrum) + 2 * sizeof(float) + 2) +
+                             splats_.size() * (sizeof(MltSplat) + 2 * sizeof(uint32_t)) +
+                             size_t(n) * 3 * sizeof(uint32_t) + image_.size() * sizeof(double) +
+                             accum_.size() * sizeof(float);
+    }
+
+    void bootstrap() override {
+        const auto t0 = Clock::now();
+        const uint32_t n = settings.chains;
+        const uint64_t m = settings.bootstrapSamples > 0 ? settings.bootstrapSamples
+                                                         : std::max<uint64_t>(uint64_t(4) * n, uint64_t(1) << 18);
+        Buffer<float> importance(device_, m);
+        Span<float> I = importance.span();
+        std::vector<uint32_t> rays(m);
+        const MltStepParams p = params_;
+        accel_.visit([&](const auto& intersector) {
+            parallelFor(device_, "mlt.bootstrap", m, [&](size_t i) {
+                uint32_t r = 0;
+                I[i] = bootstrapImportance<Store>(scene_.view(), intersector, p, i, r);
+                rays[i] = r;
+            }, 64);
+        });
+        // b = E[I]: the bootstrap mean (refined later by the large steps).
+        const double sum = reduceSum(device_, asConst(I));
+        stats.bootstrapSamples = m;
+        stats.rays += std::accumulate(rays.begin(), rays.end(), uint64_t(0));
+        bSum_ = sum;
+        bCount_ = double(m);
+        stats.b = sum / double(m);
+        if (!(sum > 0))
+            throw Error("MLT: none of the " + std::to_string(m) +
+                        " bootstrap paths carries light (the image is black); check the emitters");
+
+        // Starting states in proportion to I: inclusive prefix sum, then a stratified binary
+        // search per chain (one random offset for all, chains spaced evenly).
+        std::vector<uint64_t> start(n);
+        if (settings.start == MltStart::Bootstrap) {
+            std::vector<double> cdf(m);
+            double acc = 0;
+            for (uint64_t i = 0; i < m; ++i) cdf[i] = (acc += double(I[i]));
+            const double offset = double(uniformFloat(mix64(mltBootstrapKey(params_.seed, ~uint64_t(0)))));
+            for (uint32_t c = 0; c < n; ++c) {
+                const double target = (double(c) + offset) / double(n) * acc;
+                const auto it = std::upper_bound(cdf.begin(), cdf.end(), target);
+                start[c] = std::min<uint64_t>(uint64_t(it - cdf.begin()), m - 1);
+            }
+        } else {
+            for (uint32_t c = 0; c < n; ++c) start[c] = c;  // uniform: ordinary samples, I may be 0
+        }
+        const MltChainView<Store> v = view();
+        std::vector<uint32_t> startRays(n);
+        accel_.visit([&](const auto& intersector) {
+            parallelFor(device_, "mlt.start", n, [&](size_t c) {
+                uint32_t r = 0;
+                startChain(scene_.view(), intersector, v, p, uint32_t(c), start[c], r);
+                startRays[c] = r;
+            }, 64);
+        });
+        stats.rays += std::accumulate(startRays.begin(), startRays.end(), uint64_t(0));
+        stats.bootstrapSeconds = secondsSince(t0);
+    }
+
+    uint64_t iterate() override {
+        const uint32_t n = settings.chains, k = settings.proposals;
+        MltStepParams p = params_;
+        p.iteration = uint32_t(stats.iterations);
+        const MltChainView<Store> v = view();
+
+        auto t = Clock::now();
+        accel_.visit([&](const auto& intersector) {
+            parallelFor(device_, "mlt.propose", size_t(n) * k, [&](size_t item) {
+                traceProposal(scene_.view(), intersector, v, p, uint32_t(item));
+            }, 16);
+        });
+        stats.traceSeconds += secondsSince(t);
+
+        t = Clock::now();
+        parallelFor(device_, "mlt.advance", n, [&](size_t c) { advanceChain(v, p, uint32_t(c)); }, 256);
+        uint64_t rays = 0, accepted = 0, large = 0;
+        double largeSum = 0;
+        for (uint32_t r : proposalRays_.span()) rays += r;
+        for (uint32_t a : accepted_.span()) accepted += a;
+        for (uint32_t l : largeSteps_.span()) large += l;
+        largeSum = reduceSum(device_, asConst(largeStepSum_.span()));
+        stats.advanceSeconds += secondsSince(t);
+
+        t = Clock::now();
+        splat();
+        stats.splatSeconds += secondsSince(t);
+
+        ++stats.iterations;
+        stats.proposals += uint64_t(n) * k;
+        stats.accepted += accepted;
+        stats.rays += rays;
+        stats.largeSteps += large;
+        bSum_ += largeSum;
+        bCount_ += double(large);
+        stats.b = bSum_ / bCount_;
+
+        if (settings.sortEvery > 0 && stats.iterations % settings.sortEvery == 0) {
+            t = Clock::now();
+            sortChains();
+            stats.sortSeconds += secondsSince(t);
+        }
+        return rays;
+    }
+
+    Image develop() const override {
+        Image out(params_.width, params_.height);
+        const double totalWeight = double(settings.chains) * settings.proposals * double(stats.iterations);
+        if (totalWeight == 0) return out;
+        const double integral = filter_.integral();
+        const double scale = stats.b * double(pixels_) / totalWeight / (integral * integral);
+        const double* img = image_.data();
+        for (int y = 0; y < params_.height; ++y)
+            for (int x = 0; x < params_.width; ++x) {
+                const size_t pixel = size_t(y) * size_t(params_.width) + size_t(x);
+                const double s = scale / (coverageX_[size_t(x)] * coverageY_[size_t(y)]);
+                for (int c = 0; c < 3; ++c) out.rgb[3 * pixel + size_t(c)] = float(img[3 * pixel + size_t(c)] * s);
+            }
+        return out;
+    }
+
+private:
+    void allocateStore(uint32_t n, uint32_t bounces) {
+        const uint32_t dims = mltStoredDims(bounces);
+        store_.dims = dims;
+        if constexpr (std::is_same_v<Store, CompactChainStore>) {
+            const size_t fineSlots = kMltCameraDims + 4 * size_t(bounces), coarseSlots = 3 * size_t(bounces);
+            fine_ = Buffer<uint8_t>(device_, std::max<size_t>(1, 3 * fineSlots * n));
+            coarse_ = Buffer<uint16_t>(device_, std::max<size_t>(1, coarseSlots * n));
+            store_.fineChainStride = fineSlots;  // chain-major: a chain's vector is contiguous
+            store_.fineDimStride = 1;
+            store_.coarseChainStride = coarseSlots;
+            store_.coarseDimStride = 1;
+        } else {
+            values_ = Buffer<float>(device_, size_t(dims) * n);
+            store_.chainStride = dims;
+            store_.dimStride = 1;
+        }
+        bindStore();
+    }
+    void bindStore() {
+        if constexpr (std::is_same_v<Store, CompactChainStore>) {
+            store_.fine = fine_.data();
+            store_.coarse = coarse_.data();
+        } else {
+            store_.values = values_.data();
+        }
+    }
+
+    MltChainView<Store> view() {
+        MltChainView<Store> v;
+        v.store = store_;
+        v.chains = settings.chains;
+        v.pos = pos_.data();
+        v.value = value_.data();
+        v.importance = importance_.data();
+        v.usedDims = usedDims_.data();
+        v.proposalDims = proposalDims_.data();
+        v.proposalPos = proposalPos_.data();
+        v.proposalValue = proposalValue_.data();
+        v.proposalImportance = proposalImportance_.data();
+        v.proposalRays = proposalRays_.data();
+        v.splats = splats_.data();
+        v.largeStepSum = largeStepSum_.data();
+        v.largeSteps = largeSteps_.data();
+        v.accepted = accepted_.data();
+        return v;
+    }
+
+    MltSplatView splatView() {
+        MltSplatView v;
+        v.width = params_.width;
+        v.height = params_.height;
+        v.filter = filter_;
+        v.footprint = filter_.footprint();
+        v.splats = splats_.data();
+        v.count = uint32_t(splats_.size());
+        v.accum = accum_.data();
+        v.sortedPixel = sortKeys_.data();
+        v.sortedSplat = sortValues_.data();
+        v.pixelStart = pixelStart_.data();
+        v.image = image_.data();
+        return v;
+    }
+
+    void splat() {
+        const MltSplatView v = splatView();
+        if (settings.splat == MltSplatKind::Atomic) {
+            parallelFor(device_, "mlt.splat_atomic", v.count, [&](size_t i) { splatAtomic(v, uint32_t(i)); }, 256);
+            parallelFor(device_, "mlt.splat_flush", pixels_, [&](size_t p) { flushAtomicPixel(v, uint32_t(p)); }, 256);
+            return;
+        }
+        uint32_t* keys = sortKeys_.data();
+        uint32_t* values = sortValues_.data();
+        parallelFor(device_, "mlt.splat_keys", v.count, [&](size_t i) {
+            keys[i] = splatPixel(v, v.splats[i]);
+            values[i] = uint32_t(i);
+        }, 256);
+        radixSortPairs(device_, sortKeys_.span(), sortValues_.span(), 32);
+        uint32_t* starts = pixelStart_.data();
+        parallelFor(device_, "mlt.splat_starts", size_t(pixels_) + 1, [&](size_t p) {
+            findPixelStart(starts, keys, v.count, uint32_t(p));
+        }, 256);
+        parallelFor(device_, "mlt.splat_gather", pixels_, [&](size_t p) { gatherSplats(v, uint32_t(p)); }, 64);
+    }
+
+    /// Reorders the chains by the Morton code of their film position and first-bounce direction
+    /// samples, so that neighbouring work items trace similar paths.
+    void sortChains() {
+        const uint32_t n = settings.chains;
+        const MltChainView<Store> v = view();
+        Buffer<uint64_t> keys(device_, n);
+        Buffer<uint32_t> order(device_, n);
+        uint64_t* k = keys.data();
+        uint32_t* o = order.data();
+        parallelFor(device_, "mlt.morton", n, [&](size_t c) {
+            k[c] = mltMortonKey(v, uint32_t(c), params_.width, params_.height);
+            o[c] = uint32_t(c);
+        }, 256);
+        radixSortPairs(device_, keys.span(), order.span(), 64);
+        permute(pos_, o);
+        permute(value_, o);
+        permute(importance_, o);
+        permute(usedDims_, o);
+        if constexpr (std::is_same_v<Store, CompactChainStore>) {
+            permuteRows(fine_, 3 * store_.fineChainStride, o);
+            permuteRows(coarse_, store_.coarseChainStride, o);
+        } else {
+            permuteRows(values_, store_.chainStride, o);
+        }
+        bindStore();
+    }
+    template <class T>
+    void permute(Buffer<T>& b, const uint32_t* order) { permuteRows(b, 1, order); }
+    template <class T>
+    void permuteRows(Buffer<T>& b, size_t row, const uint32_t* order) {
+        if (row == 0) return;
+        Buffer<T> out(device_, b.size());
+        const T* src = b.data();
+        T* dst = out.data();
+        parallelFor(device_, "mlt.permute", settings.chains, [&](size_t c) {
+            std::copy(src + size_t(order[c]) * row, src + size_t(order[c] + 1) * row, dst + c * row);
+        }, 256);
+        b = std::move(out);
+    }
+
+    const Scene& scene_;
+    const Accel& accel_;
+    Device device_;
+    MltStepParams params_;
+    uint32_t pixels_ = 0;
+    Filter filter_;
+    std::vector<double> coverageX_, coverageY_;
+    Store store_;
+    Buffer<uint8_t> fine_;
+    Buffer<uint16_t> coarse_;
+    Buffer<float> values_;
+    Buffer<Vec2f> pos_, proposalPos_;
+    Buffer<Spectrum> value_, proposalValue_;
+    Buffer<float> importance_, proposalImportance_, largeStepSum_, accum_;
+    Buffer<uint16_t> usedDims_, proposalDims_;
+    Buffer<uint32_t> proposalRays_, largeSteps_, accepted_, sortKeys_, sortValues_, pixelStart_;
+    Buffer<MltSplat> splats_;
+    Buffer<double> image_;
+    double bSum_ = 0, bCount_ = 0;
+};
+
+}  // namespace
+
+MltRenderer::MltRenderer(const Scene& scene, const Accel& accel, const PathSettings& path,
+                         const MltSettings& settings, uint64_t seed) {
+    if (settings.state == MltStateKind::Compact)
+        impl_ = std::make_unique<MltImpl<CompactChainStore>>(scene, accel, path, settings, seed);
+    else
+        impl_ = std::make_unique<MltImpl<FloatChainStore>>(scene, accel, path, settings, seed);
+}
+MltRenderer::~MltRenderer() = default;
+void MltRenderer::bootstrap() { impl_->bootstrap(); }
+uint64_t MltRenderer::iterate() { return impl_->iterate(); }
+Image MltRenderer::develop() const { return impl_->develop(); }
+const MltStats& MltRenderer::stats() const { return impl_->stats; }
+const MltSettings& MltRenderer::settings() const { return impl_->settings; }
+double MltRenderer::mutationsPerPixel() const {
+    return impl_->pixels > 0 ? double(impl_->stats.proposals) / double(impl_->pixels) : 0;
+}
+
+}  // namespace caustica

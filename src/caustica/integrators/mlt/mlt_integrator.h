@@ -1,0 +1,90 @@
+// mlt_integrator.h — host driver of many-chain primary-sample-space Metropolis light transport
+// (mlt_kernel.h): bootstrap by ordinary Monte Carlo, lock-step iterations of all chains, splat
+// accumulation, optional Morton sorting of the chains, and the developed image.
+//
+//     MltRenderer mlt(scene, accel, pathSettingsFrom(scene.integrator), settings, seed);
+//     mlt.bootstrap();                       // b, and chain starts in proportion to luminance
+//     while (...) mlt.iterate();             // each chain: k proposals, splats, next state
+//     Image image = mlt.develop();
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "caustica/accel/accel.h"
+#include "caustica/film/image.h"
+#include "caustica/integrators/mlt/mlt_state.h"
+#include "caustica/integrators/path/path_kernel.h"
+#include "caustica/scene/scene.h"
+
+namespace caustica {
+
+enum class MltStateKind { Compact, Float };  // fixed-point 24/16-bit coordinates, or float32
+enum class MltSplatKind { Atomic, Sort };
+enum class MltStart { Bootstrap, Uniform };  // uniform: chains start at unselected samples (for experiments)
+
+MltStateKind parseMltStateKind(const std::string& name);  // "compact" | "float"
+MltSplatKind parseMltSplatKind(const std::string& name);  // "atomic" | "sort"
+MltStart parseMltStart(const std::string& name);          // "bootstrap" | "uniform"
+
+struct MltSettings {
+    uint32_t chains = 1u << 16;           // chains stepped in lock step
+    uint64_t bootstrapSamples = 0;        // M ordinary Monte Carlo samples; 0 = max(4 chains, 2^18)
+    Float largeStepProbability = 0.1f;
+    MltMutation mutation;                 // small-step sizes s1, s2
+    uint32_t proposals = 1;               // k proposals per step (split transitions)
+    MltStateKind state = MltStateKind::Compact;
+    MltSplatKind splat = MltSplatKind::Atomic;
+    uint32_t sortEvery = 0;               // Morton-sort the chains every N iterations; 0 = never
+    MltStart start = MltStart::Bootstrap;
+};
+
+/// Bounces whose primary samples a chain stores: max_depth - 1 when bounded (the last segment
+/// draws none), else kMltUnboundedStoredBounces; at most kMltMaxStoredBounces. Later bounces use
+/// independent numbers.
+inline constexpr uint32_t kMltUnboundedStoredBounces = 24;
+inline constexpr uint32_t kMltMaxStoredBounces = 64;
+uint32_t mltStoredBounces(const PathSettings& settings);
+/// Bytes of persistent state per chain (primary samples plus film position, F, I and U).
+size_t mltBytesPerChain(MltStateKind kind, uint32_t storedBounces);
+
+struct MltStats {
+    double b = 0;                   // normalisation: mean luminance of the path-space integrand
+    uint64_t bootstrapSamples = 0, largeSteps = 0;
+    uint64_t iterations = 0;
+    uint64_t proposals = 0;         // paths traced by the chains (k per chain and iteration)
+    uint64_t accepted = 0;          // chain moves
+    uint64_t rays = 0;              // all rays, bootstrap included
+    size_t bytesPerChain = 0, stateBytes = 0, scratchBytes = 0;
+    double bootstrapSeconds = 0, traceSeconds = 0, advanceSeconds = 0, splatSeconds = 0, sortSeconds = 0;
+};
+
+class MltRenderer {
+public:
+    MltRenderer(const Scene& scene, const Accel& accel, const PathSettings& path, const MltSettings& settings,
+                uint64_t seed);
+    ~MltRenderer();
+    MltRenderer(const MltRenderer&) = delete;
+    MltRenderer& operator=(const MltRenderer&) = delete;
+
+    /// Traces the bootstrap samples, estimates b and starts every chain. Throws caustica::Error
+    /// when no bootstrap sample carries light (b = 0: the image is black).
+    void bootstrap();
+    /// One iteration of every chain. Returns the rays traced.
+    uint64_t iterate();
+    /// The image so far: splat sums scaled by b * pixels / total splat weight, divided by the
+    /// filter's integral (and its coverage at the image border).
+    Image develop() const;
+    /// Proposals per pixel so far (the analogue of samples per pixel).
+    double mutationsPerPixel() const;
+    const MltStats& stats() const;
+    const MltSettings& settings() const;
+
+    struct Impl;
+
+private:
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace caustica

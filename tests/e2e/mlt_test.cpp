@@ -1,0 +1,235 @@
+// Metropolis light transport converges to the path tracer's image: MLT renders of cornell-box and
+// cornell-water (64x64) against the Mitsuba 3 references the path tracer is tested against, in
+// every mode (compact and float state, k = 1 and k = 2 proposals, atomic and sort splats, Morton
+// sorting), and with a wide reconstruction filter against our own path tracer.
+//
+// MLT's error is correlated between pixels (a chain splats neighbouring pixels in turn), so the
+// statistics are taken over 8x8-pixel blocks: for each block and channel a z-score of the
+// difference of the block means, with our variance estimated from R independent MLT runs (seeds)
+// and the reference's from its per-pixel variance. The bounds: mean z^2 (a t-distribution with
+// R - 1 degrees of freedom has E[t^2] = (R - 1) / (R - 3); the bound is three times that, as the
+// reference's variance of caustic pixels, estimated from 16 batches, runs low) and the z-score of
+// the image mean, which carries the power: a brightness error of 8% (cornell-box) or 15%
+// (cornell-water, whose image mean is limited by the noise of b: its luminance is heavy-tailed)
+// must be caught (the test can fail), checked on one configuration per scene.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "caustica/integrators/mlt/mlt_loop.h"
+#include "caustica/integrators/path/path_integrator.h"
+#include "caustica/io/image_io.h"
+#include "common/image_stats.h"
+#include "render_helpers.h"
+
+namespace caustica::test {
+namespace {
+
+constexpr int kBlock = 8;
+
+Image renderMlt(const Scene& scene, const Accel& accel, const MltSettings& settings, uint64_t seed, double mpp) {
+    MltRenderer mlt(scene, accel, pathSettingsFrom(scene.integrator), settings, seed);
+    MltBudget budget;
+    budget.mutationsPerPixel = mpp;
+    runMlt(mlt, budget);
+    return mlt.develop();
+}
+
+/// Per block and channel: mean over the block, and the variance of that mean.
+struct BlockStats {
+    std::vector<double> mean, var;
+    double imageMean = 0, imageMeanVar = 0;
+};
+
+/// Block means of R independent images: their average and the variance of that average.
+BlockStats blocksOfRuns(const std::vector<Image>& runs) {
+    const int w = runs[0].width, h = runs[0].height, bw = w / kBlock, bh = h / kBlock;
+    const double R = double(runs.size());
+    BlockStats s;
+    s.mean.assign(size_t(bw * bh * 3), 0);
+    s.var.assign(s.mean.size(), 0);
+    std::vector<std::vector<double>> perRun(runs.size(), std::vector<double>(s.mean.size(), 0));
+    std::vector<double> runMeans(runs.size(), 0);
+    for (size_t r = 0; r < runs.size(); ++r) {
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x)
+                for (int c = 0; c < 3; ++c) {
+                    const double v = runs[r].pixel(x, y)[c];
+                    perRun[r][size_t(((y / kBlock) * bw + x / kBlock) * 3 + c)] += v / (kBlock * kBlock);
+                    runMeans[r] += v / (double(w) * h * 3);
+                }
+    }
+    for (size_t i = 0; i < s.mean.size(); ++i) {
+        double m = 0, m2 = 0;
+        for (const auto& b : perRun) m += b[i] / R;
+        for (const auto& b : perRun) m2 += (b[i] - m) * (b[i] - m);
+        s.mean[i] = m;
+        s.var[i] = m2 / (R - 1) / R;
+    }
+    double m = 0, m2 = 0;
+    for (double v : runMeans) m += v / R;
+    for (double v : runMeans) m2 += (v - m) * (v - m);
+    s.imageMean = m;
+    s.imageMeanVar = m2 / (R - 1) / R;
+    return s;
+}
+
+/// Block means of a reference image with independent per-pixel variances of its mean.
+BlockStats blocksOfReference(const Image& mean, const Image& var) {
+    const int w = mean.width, h = mean.height, bw = w / kBlock;
+    BlockStats s;
+    s.mean.assign(size_t(bw * (h / kBlock) * 3), 0);
+    s.var.assign(s.mean.size(), 0);
+    const double n = double(kBlock * kBlock), N = double(w) * h * 3;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < 3; ++c) {
+                const size_t i = size_t(((y / kBlock) * bw + x / kBlock) * 3 + c);
+                s.mean[i] += mean.pixel(x, y)[c] / n;
+                s.var[i] += var.pixel(x, y)[c] / (n * n);
+                s.imageMean += mean.pixel(x, y)[c] / N;
+                s.imageMeanVar += var.pixel(x, y)[c] / (N * N);
+            }
+    return s;
+}
+
+struct Agreement {
+    double meanZ2 = 0, imageZ = 0, relBias = 0;
+    bool passed(int runs) const {
+        const double expected = double(runs - 1) / double(runs - 3);  // E[t^2], R - 1 dof
+        return meanZ2 < 3.0 * expected && std::fabs(imageZ) < 4.0;
+    }
+};
+
+Agreement compare(const BlockStats& ours, const BlockStats& ref, double scale = 1.0) {
+    Agreement a;
+    for (size_t i = 0; i < ours.mean.size(); ++i) {
+        const double z = (ours.mean[i] * scale - ref.mean[i]) / std::sqrt(ours.var[i] * scale * scale + ref.var[i] + 1e-30);
+        a.meanZ2 += z * z / double(ours.mean.size());
+    }
+    a.imageZ = (ours.imageMean * scale - ref.imageMean) /
+               std::sqrt(ours.imageMeanVar * scale * scale + ref.imageMeanVar);
+    a.relBias = ours.imageMean * scale / ref.imageMean - 1;
+    return a;
+}
+
+struct MltCase {
+    const char* scene;
+    const char* reference;
+    double mutationsPerPixel;
+    double detectableError;  // relative brightness error the statistics must reject
+};
+
+void checkMltAgainstReference(const MltCase& c, const MltSettings& settings, bool checkPower, int runs = 6) {
+    const std::string refPath = sourcePath(c.reference);
+    const Image ref = readImage(refPath + ".exr"), refVar = readImage(refPath + ".var.exr");
+    const Scene scene = loadScene(sourcePath(c.scene), {{"width", std::to_string(ref.width)},
+                                                        {"height", std::to_string(ref.height)}});
+    const Accel accel(scene, AccelKind::Embree);
+    std::vector<Image> images;
+    for (int r = 0; r < runs; ++r) images.push_back(renderMlt(scene, accel, settings, 100 + uint64_t(r), c.mutationsPerPixel));
+    const BlockStats ours = blocksOfRuns(images), theirs = blocksOfReference(ref, refVar);
+    const Agreement a = compare(ours, theirs);
+    std::printf("%s mlt (k=%u, %s, %s, sort every %u): block mean z^2 %.2f, image-mean z %.2f, bias %+.2f%%\n",
+                c.scene, settings.proposals, settings.state == MltStateKind::Compact ? "compact" : "float",
+                settings.splat == MltSplatKind::Atomic ? "atomic" : "sort", settings.sortEvery, a.meanZ2, a.imageZ,
+                100 * a.relBias);
+    EXPECT_TRUE(a.passed(runs)) << "block mean z^2 " << a.meanZ2 << ", image-mean z " << a.imageZ;
+    if (!checkPower) return;
+    // Power: the same statistics reject a brighter image.
+    const Agreement wrong = compare(ours, theirs, 1 + c.detectableError);
+    EXPECT_FALSE(wrong.passed(runs)) << "an error of " << 100 * c.detectableError
+                                     << "% is not detected: mean z^2 " << wrong.meanZ2 << ", image-mean z " << wrong.imageZ;
+}
+
+MltSettings smallSettings() {
+    MltSettings s;
+    s.chains = 4096;
+    s.bootstrapSamples = 1 << 17;
+    return s;
+}
+
+const MltCase kBox{"scenes/cornell-box/scene.xml", "scenes/cornell-box/reference/cornell-box-64", 96, 0.08};
+const MltCase kWater{"scenes/cornell-water/scene.xml", "scenes/cornell-water/reference/cornell-water-64", 96, 0.15};
+
+TEST(MltConvergence, CornellBoxCompactAtomic) { checkMltAgainstReference(kBox, smallSettings(), true); }
+
+TEST(MltConvergence, CornellBoxFloatSortTwoProposalsMortonSorted) {
+    MltSettings s = smallSettings();
+    s.state = MltStateKind::Float;
+    s.splat = MltSplatKind::Sort;
+    s.proposals = 2;
+    s.sortEvery = 4;
+    checkMltAgainstReference(kBox, s, false);
+}
+
+TEST(MltConvergence, CornellWater) { checkMltAgainstReference(kWater, smallSettings(), true); }
+
+TEST(MltConvergence, CornellWaterFourProposals) {
+    MltSettings s = smallSettings();
+    s.proposals = 4;
+    s.splat = MltSplatKind::Sort;
+    checkMltAgainstReference({kWater.scene, kWater.reference, 64, 0}, s, false);
+}
+
+// Splats through a wide filter (tent, radius 1.5) land on several pixels; the border pixels are
+// normalised by the filter's coverage. Against our own path tracer with the same filter.
+TEST(MltConvergence, TentFilterMatchesThePathTracer) {
+    Scene scene = loadScene(sourcePath("scenes/cornell-box/scene.xml"), {{"width", "32"}, {"height", "32"}});
+    scene.film.filter = FilterDesc{FilterType::Tent, 1.5f, 0.5f};
+    const Accel accel(scene, AccelKind::Embree);
+    constexpr int kRuns = 10;
+    std::vector<Image> mlt, path;
+    for (int r = 0; r < kRuns; ++r) {
+        mlt.push_back(renderMlt(scene, accel, smallSettings(), 7 + uint64_t(r), 160));
+        path.push_back(renderImage(scene, {256, uint64_t(50 + r), AccelKind::Embree, 0}));
+    }
+    const Agreement a = compare(blocksOfRuns(mlt), blocksOfRuns(path));
+    std::printf("tent filter: block mean z^2 %.2f, image-mean z %.2f, bias %+.2f%%\n", a.meanZ2, a.imageZ, 100 * a.relBias);
+    // Both sides' variances come from R runs (t-like, R - 1 degrees of freedom); MLT's error is
+    // correlated across neighbouring pixels, so the three channels of a block are nearly one
+    // sample: a generous bound on mean z^2, and the z-test of the image mean.
+    EXPECT_TRUE(a.passed(kRuns)) << "block mean z^2 " << a.meanZ2 << ", image-mean z " << a.imageZ;
+}
+
+// With sort splatting every addition happens in a fixed order: the image does not depend on the
+// thread count. Atomic splatting gives the same image up to float rounding.
+TEST(MltDeterminism, SortSplatsAreBitIdenticalForAnyThreadCountAndAtomicsAgree) {
+    Scene scene = loadScene(sourcePath("scenes/cornell-box/scene.xml"), {{"width", "24"}, {"height", "16"}});
+    scene.film.filter = FilterDesc{FilterType::Gaussian, 2.0f, 0.5f};
+    const Accel accel(scene, AccelKind::Embree);
+    MltSettings s = smallSettings();
+    s.chains = 512;
+    s.bootstrapSamples = 4096;
+    s.splat = MltSplatKind::Sort;
+    s.sortEvery = 3;
+    Image one, many;
+    {
+        tbb::task_arena arena(1);
+        arena.execute([&] { one = renderMlt(scene, accel, s, 3, 16); });
+    }
+    many = renderMlt(scene, accel, s, 3, 16);
+    EXPECT_EQ(one.rgb, many.rgb);
+    s.splat = MltSplatKind::Atomic;
+    const Image atomic = renderMlt(scene, accel, s, 3, 16);
+    double maxRel = 0;
+    for (size_t i = 0; i < atomic.rgb.size(); ++i)
+        maxRel = std::max(maxRel, std::fabs(double(atomic.rgb[i]) - many.rgb[i]) / (std::fabs(double(many.rgb[i])) + 1e-3));
+    EXPECT_LT(maxRel, 1e-4);
+}
+
+TEST(MltErrors, ABlackSceneIsAClearError) {
+    Scene scene = loadScene(sourcePath("scenes/cornell-box/scene.xml"), {{"width", "8"}, {"height", "8"}});
+    for (Light& l : scene.lights) l.radiance = Spectrum(0);
+    const Accel accel(scene, AccelKind::Embree);
+    MltSettings s = smallSettings();
+    s.chains = 16;
+    s.bootstrapSamples = 256;
+    MltRenderer mlt(scene, accel, pathSettingsFrom(scene.integrator), s, 1);
+    EXPECT_THROW(mlt.bootstrap(), Error);
+}
+
+}  // namespace
+}  // namespace caustica::test

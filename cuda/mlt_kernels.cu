@@ -43,10 +43,10 @@ void launchMltMortonKeysT(const MltChainView<Store>& chains, int width, int heig
 }
 
 void launchMltBootstrap(const SceneView& scene, const BvhIntersector& accel, const MltStepParams& params,
-                        uint64_t count, float* importance, uint32_t* rays) {
+                        uint64_t count, float* importance, uint32_t* pixel, uint32_t* rays) {
     parallelForCuda("mlt.bootstrap", count, [=] CA_HD(size_t i) {
         uint32_t r = 0;
-        importance[i] = bootstrapImportance<CompactChainStore>(scene, accel, params, i, r);
+        importance[i] = bootstrapImportance<CompactChainStore>(scene, accel, params, i, r, pixel[i]);
         rays[i] = r;
     }, 128);
 }

@@ -10,7 +10,7 @@
 namespace caustica {
 
 void launchMltBootstrap(const SceneView& scene, const BvhIntersector& accel, const MltStepParams& params,
-                        uint64_t count, float* importance, uint32_t* rays);
+                        uint64_t count, float* importance, uint32_t* pixel, uint32_t* rays);
 void launchMltStart(const SceneView& scene, const BvhIntersector& accel, const MltChainView<CompactChainStore>& chains,
                     const MltStepParams& params, const uint64_t* bootstrapIndex, uint32_t* rays);
 void launchMltProposals(const SceneView& scene, const BvhIntersector& accel,

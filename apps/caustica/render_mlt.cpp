@@ -11,11 +11,11 @@
 namespace caustica::cli {
 
 void addMltOptions(CLI::App& cmd, MltCliOptions& o) {
-    cmd.add_option("--mlt-chains", o.chains, "MLT: Markov chains stepped in lock step (default 65536)")
+    cmd.add_option("--mlt-chains", o.chains, "MLT: Markov chains stepped in lock step (default 1024)")
         ->check(CLI::Range(1u, 1u << 26));
     cmd.add_option("--mlt-bootstrap", o.bootstrap,
                    "MLT: ordinary Monte Carlo samples that estimate b and select the chains' starts "
-                   "(default max(4 x chains, 262144))")
+                   "(default 16 per pixel, at most 2^20, at least 4 per chain)")
         ->check(CLI::Range(uint64_t(1), uint64_t(1) << 34));
     cmd.add_option("--mlt-large-step", o.largeStep, "MLT: probability of a large step (default 0.1)")
         ->check(CLI::Range(0.0, 1.0));
@@ -34,6 +34,10 @@ void addMltOptions(CLI::App& cmd, MltCliOptions& o) {
                    "MLT: chain starts, bootstrap (in proportion to luminance) or uniform (for "
                    "start-up bias experiments)")
         ->check(CLI::IsMember({"bootstrap", "uniform"}));
+    cmd.add_option("--mlt-target", o.target,
+                   "MLT: target function, relative (default: luminance over the pixel's smoothed bootstrap "
+                   "brightness, for even relative error) or luminance (Kelemen's)")
+        ->check(CLI::IsMember({"luminance", "relative"}));
 }
 
 MltSettings mltSettingsFrom(const IntegratorDesc& desc, const MltCliOptions& o) {
@@ -48,6 +52,8 @@ MltSettings mltSettingsFrom(const IntegratorDesc& desc, const MltCliOptions& o) 
     s.state = parseMltStateKind(o.state);
     s.splat = parseMltSplatKind(o.splat);
     s.start = parseMltStart(o.start);
+    s.target = o.target.empty() ? (desc.mltRelativeTarget ? MltTarget::Relative : MltTarget::Luminance)
+                                : parseMltTarget(o.target);
     s.sortEvery = o.sortEvery;
     return s;
 }
@@ -57,8 +63,9 @@ namespace {
 void printMltSummary(const MltRenderer& mlt, std::FILE* out) {
     const MltStats& s = mlt.stats();
     const MltSettings& set = mlt.settings();
-    std::fprintf(out, "mlt         b = %.6g (%llu bootstrap + %llu large-step samples)\n", s.b,
-                 (unsigned long long)s.bootstrapSamples, (unsigned long long)s.largeSteps);
+    std::fprintf(out, "mlt         b = %.6g (%llu bootstrap + %llu large-step samples), %s target\n", s.b,
+                 (unsigned long long)s.bootstrapSamples, (unsigned long long)s.largeSteps,
+                 set.target == MltTarget::Relative ? "relative" : "luminance");
     std::fprintf(out, "mlt chains  %u x %u proposals, %llu iterations, %.3g mutations/pixel, acceptance %.1f%%\n",
                  set.chains, set.proposals, (unsigned long long)s.iterations, mlt.mutationsPerPixel(),
                  s.iterations > 0 ? 100.0 * double(s.accepted) / double(uint64_t(set.chains) * s.iterations) : 0.0);
@@ -81,8 +88,9 @@ int runMltRender(const Scene& scene, const Accel& accel, const MltSettings& sett
     budget.cancel = r.cancel;
     std::unique_ptr<ProgressReporter> progress;
     if (!r.quiet) {
-        std::fprintf(stderr, "device: cpu; integrator mlt, %u chains x %u proposals, %s state, %s splats\n",
+        std::fprintf(stderr, "device: cpu; integrator mlt, %u chains x %u proposals, %s target, %s state, %s splats\n",
                      settings.chains, settings.proposals,
+                     settings.target == MltTarget::Relative ? "relative" : "luminance",
                      settings.state == MltStateKind::Compact ? "compact" : "float",
                      settings.splat == MltSplatKind::Atomic ? "atomic" : "sort");
         progress = std::make_unique<ProgressReporter>("render", r.mutationsPerPixel, r.timeLimit);

@@ -22,7 +22,7 @@ struct MltCliOptions {
     double largeStep = -1;
     uint32_t proposals = 0;
     double s1 = -1, s2 = -1;
-    std::string state = "compact", splat = "atomic", start = "bootstrap";
+    std::string state = "compact", splat = "atomic", start = "bootstrap", target;  // target "": the scene's
     uint32_t sortEvery = 0;
 };
 

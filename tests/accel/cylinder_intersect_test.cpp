@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "accel/cylinder_reference.h"
 #include "accel/test_scenes.h"
 #include "caustica/accel/bvh_traversal.h"
 #include "caustica/accel/embree_accel.h"
@@ -14,16 +15,7 @@
 namespace caustica {
 namespace {
 
-Cylinder makeCylinder(Vec3f base, Vec3f axis, Float radius, Float length, uint32_t shape = 0) {
-    Cylinder c;
-    c.base = base;
-    c.axis = normalize(axis);
-    c.xAxis = Frame(c.axis).s;
-    c.radius = radius;
-    c.length = length;
-    c.shape = shape;
-    return c;
-}
+using test::makeCylinder;
 
 bool hitCyl(const Cylinder& c, Vec3f o, Vec3f d, Float tMax, Float& t) {
     return intersectCylinder(o, d, tMax, c.base, c.axis, c.radius, c.length, t);
@@ -31,23 +23,9 @@ bool hitCyl(const Cylinder& c, Vec3f o, Vec3f d, Float tMax, Float& t) {
 
 /// The nearest valid t in (0, tMax) in double precision, or -1.
 double referenceT(const Cylinder& c, Vec3f o, Vec3f d, double tMax) {
-    const double ax[3] = {c.axis.x, c.axis.y, c.axis.z};
-    const double fo[3] = {double(o.x) - c.base.x, double(o.y) - c.base.y, double(o.z) - c.base.z};
-    const double dd[3] = {d.x, d.y, d.z};
-    const double fa = fo[0] * ax[0] + fo[1] * ax[1] + fo[2] * ax[2];
-    const double da = dd[0] * ax[0] + dd[1] * ax[1] + dd[2] * ax[2];
-    double f[3], p[3];
-    for (int k = 0; k < 3; ++k) {
-        f[k] = fo[k] - ax[k] * fa;
-        p[k] = dd[k] - ax[k] * da;
-    }
-    const double a = p[0] * p[0] + p[1] * p[1] + p[2] * p[2];
-    const double b = 2 * (f[0] * p[0] + f[1] * p[1] + f[2] * p[2]);
-    const double cc = f[0] * f[0] + f[1] * f[1] + f[2] * f[2] - double(c.radius) * c.radius;
-    const double disc = b * b - 4 * a * cc;
-    if (!(a > 0) || disc < 0) return -1;
-    for (double t : {(-b - std::sqrt(disc)) / (2 * a), (-b + std::sqrt(disc)) / (2 * a)}) {
-        const double h = fa + da * t;
+    const test::CylinderRoots roots(c, o, d);
+    for (int i = 0; i < roots.count; ++i) {
+        const double t = roots.t[i], h = roots.height(i);
         if (t > 0 && t < tMax && h >= 0 && h <= c.length) return t;
     }
     return -1;

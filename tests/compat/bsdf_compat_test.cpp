@@ -8,7 +8,7 @@ namespace caustica::test {
 namespace {
 
 // Beckmann (Mitsuba's default) and GGX, nonlinear, water outside; alpha 0.1 -> 0.13 is detected.
-TEST(MitsubaCompatBsdf, RoughPlastic) { checkPlugin("roughplastic", {{"alpha", "0.13"}}); }
+TEST(MitsubaCompatBsdf, RoughPlastic) { checkPlugin("roughplastic", {{"alpha", "0.13"}}, 256); }
 
 // A diffuse/rough-gold blend, and a twosided blend with a delta child (Mitsuba 3.9.1's mixture
 // pdf and weight for delta samples); weight 0.3 -> 0.4 is detected.
@@ -20,7 +20,7 @@ TEST(MitsubaCompatBsdf, Mask) { checkPlugin("mask", {{"opacity", "0.4"}}); }
 
 // Null surfaces: crossings count as bounces, as Mitsuba's path integrator does; with one bounce
 // more (max_depth 5 -> 6) the image differs.
-TEST(MitsubaCompatBsdf, Null) { checkPlugin("null", {{"max_depth", "6"}}); }
+TEST(MitsubaCompatBsdf, Null) { checkPlugin("null", {{"max_depth", "6"}}, 64); }
 
 // A referenced twosided with different front and back; the back's roughness 0.2 -> 0.3 is
 // detected.
@@ -28,7 +28,7 @@ TEST(MitsubaCompatBsdf, TwoSided) { checkPlugin("twosided", {{"alpha", "0.3"}});
 
 // Principled: metallic, spec_tint, sheen, clearcoat on one sphere, transmission on the other;
 // metallic 0.3 -> 0.4 is detected.
-TEST(MitsubaCompatBsdf, Principled) { checkPlugin("principled", {{"metallic", "0.4"}}); }
+TEST(MitsubaCompatBsdf, Principled) { checkPlugin("principled", {{"metallic", "0.4"}}, 128); }
 
 }  // namespace
 }  // namespace caustica::test

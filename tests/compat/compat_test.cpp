@@ -12,11 +12,11 @@ namespace {
 // Mitsuba 3's default distribution (Beckmann) and named conductors (Au, Cu). A small roughness
 // change, or GGX in place of Beckmann, is detected.
 TEST(MitsubaCompat, RoughConductorBeckmann) {
-    checkPlugin("roughconductor", {{"alpha", "0.23"}});
+    checkPlugin("roughconductor", {{"alpha", "0.23"}}, 256);
 }
 
 TEST(MitsubaCompat, RoughConductorGgxIsNotBeckmann) {
-    const ReferenceComparison bad = compareScene("roughconductor", {{"distribution", "ggx"}});
+    const ReferenceComparison bad = compareScene("roughconductor", {{"distribution", "ggx"}}, 64);
     EXPECT_FALSE(bad.passed()) << bad.describe();
 }
 
@@ -24,13 +24,13 @@ TEST(MitsubaCompat, RoughConductorGgxIsNotBeckmann) {
 TEST(MitsubaCompat, ConductorNamedMaterials) { checkPlugin("conductor", {{"material", "Au"}}); }
 
 // Plastic (linear and nonlinear); int_ior 1.5 -> 1.6 is detected.
-TEST(MitsubaCompat, Plastic) { checkPlugin("plastic", {{"int_ior", "1.6"}}); }
+TEST(MitsubaCompat, Plastic) { checkPlugin("plastic", {{"int_ior", "1.6"}}, 256); }
 
 // Thin dielectric pane; int_ior 1.5 -> 1.8 is detected.
 TEST(MitsubaCompat, ThinDielectric) { checkPlugin("thindielectric", {{"int_ior", "1.8"}}); }
 
 // Rough dielectric, Beckmann (default) and GGX, from both sides; alpha 0.2 -> 0.3 is detected.
-TEST(MitsubaCompat, RoughDielectric) { checkPlugin("roughdielectric", {{"alpha", "0.3"}}); }
+TEST(MitsubaCompat, RoughDielectric) { checkPlugin("roughdielectric", {{"alpha", "0.3"}}, 128); }
 
 }  // namespace
 }  // namespace caustica::test

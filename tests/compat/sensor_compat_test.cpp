@@ -8,7 +8,7 @@ namespace caustica::test {
 namespace {
 
 // Thin lens: defocus of near and far spheres; focus distance 4 -> 3.2 is seen.
-TEST(MitsubaCompat, ThinLensSensor) { checkPlugin("thinlens", {{"focus", "3.2"}}); }
+TEST(MitsubaCompat, ThinLensSensor) { checkPlugin("thinlens", {{"focus", "3.2"}}, 256); }
 
 // Orthographic: to_world's scale sets the extent; 1.6 -> 1.7 is seen.
 TEST(MitsubaCompat, OrthographicSensor) { checkPlugin("orthographic", {{"scale", "1.7"}}); }

@@ -17,14 +17,14 @@ void expectNoMatch(const std::string& name, const std::map<std::string, std::str
     {
         testing::ScopedFakeTestPartResultReporter intercept(
             testing::ScopedFakeTestPartResultReporter::INTERCEPT_ONLY_CURRENT_THREAD, &failures);
-        bad = compareScene(name, wrong);
+        bad = compareScene(name, wrong, kWrongSppPerRun);
     }
     EXPECT_TRUE(failures.size() > 0 || !bad.passed())
         << name << " with a wrong parameter still matches: " << bad.describe();
 }
 
 TEST(ShapeCompat, Serialized) {
-    checkPlugin("serialized", {{"face_normals", "true"}});  // faceted sphere
+    checkPlugin("serialized", {{"face_normals", "true"}}, 128);  // faceted sphere
 }
 
 TEST(ShapeCompat, SerializedShapeIndex) {
@@ -37,6 +37,10 @@ TEST(ShapeCompat, Cylinder) {
 
 TEST(ShapeCompat, CylinderFlippedEmitter) {
     expectNoMatch("cylinder", {{"flip", "true"}});  // the lamp emits into itself
+}
+
+TEST(ShapeCompat, SphereUvFollowsARotatingToWorld) {
+    checkPlugin("sphere_rotated", {{"angle", "60"}});  // checks and lobe turned by 10 degrees
 }
 
 TEST(ShapeCompat, Instance) {

@@ -167,6 +167,21 @@ TEST(MltConvergence, CornellBoxFloatSortTwoProposalsMortonSorted) {
 
 TEST(MltConvergence, CornellWater) { checkMltAgainstReference(kWater, smallSettings(), true); }
 
+// Kelemen's luminance target with the large-step combination: same image, power kept.
+TEST(MltConvergence, CornellWaterLuminanceTarget) {
+    MltSettings s = smallSettings();
+    s.target = MltTarget::Luminance;
+    s.largeStepProbability = 0.3f;
+    checkMltAgainstReference(kWater, s, true);
+}
+
+// The relative target with no large steps at all: the chains alone.
+TEST(MltConvergence, CornellBoxNoLargeSteps) {
+    MltSettings s = smallSettings();
+    s.largeStepProbability = 0;
+    checkMltAgainstReference(kBox, s, false);
+}
+
 TEST(MltConvergence, CornellWaterFourProposals) {
     MltSettings s = smallSettings();
     s.proposals = 4;

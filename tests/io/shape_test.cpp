@@ -1,8 +1,11 @@
 // shape_test.cpp — shapes as they reach the Scene: built-in meshes (areas, counts, normals),
-// analytic spheres, OBJ/PLY meshes through XML with to_world, face_normals and computed normals.
+// analytic spheres (uv and dp/du against Mitsuba's), OBJ/PLY meshes through XML with to_world,
+// face_normals and computed normals.
 #include <cmath>
 
+#include "caustica/accel/primitive_intersect.h"
 #include "caustica/io/mesh/shape_meshes.h"
+#include "caustica/scene/interaction.h"
 #include "scene_test_util.h"
 
 namespace caustica::test {
@@ -87,6 +90,68 @@ TEST(BuiltinShapes, Spheres) {
         dir.write("s.xml", sceneXml("<shape type=\"sphere\">\n<transform name=\"to_world\"><scale "
                                     "x=\"2\"/></transform></shape>"));
     expectError([&] { loadScene(bad); }, "s.xml", 3, "to_world must scale uniformly");
+}
+
+/// One of Mitsuba 3.9.1's surface interactions (scalar_rgb, scene.ray_intersect) on a sphere hit
+/// by the ray from center - 10 d along d.
+struct MitsubaSphereHit {
+    Vec3f d;
+    Vec2f uv;
+    Vec3f dpdu, dpdv, n;
+};
+
+void expectMitsubaSphereHits(const Scene& s, std::initializer_list<MitsubaSphereHit> hits) {
+    const SceneView view = s.view();
+    const Sphere& sphere = s.spheres[0];
+    for (const MitsubaSphereHit& m : hits) {
+        SCOPED_TRACE("d = " + std::to_string(m.d.x) + ", " + std::to_string(m.d.y) + ", " +
+                     std::to_string(m.d.z));
+        const Ray ray{sphere.center - m.d * 10, m.d, kInfinity};
+        Hit hit;
+        hit.primId = view.numTriangles();
+        ASSERT_TRUE(intersectSphere(ray.o, ray.d, kInfinity, sphere.center, sphere.radius, hit.t));
+        const SurfaceInteraction si = computeInteraction(view, ray, hit);
+        EXPECT_NEAR(si.uv.x, m.uv.x, 2e-5);
+        EXPECT_NEAR(si.uv.y, m.uv.y, 2e-5);
+        EXPECT_NEAR(length(si.dpdu - m.dpdu), 0, 2e-4);
+        EXPECT_NEAR(length(si.dpdv - m.dpdv), 0, 2e-4);
+        EXPECT_NEAR(length(si.ng - m.n), 0, 2e-5);
+    }
+}
+
+TEST(BuiltinShapes, SphereUvAndDpduAreTakenInObjectSpaceAsMitsuba) {
+    // to_world = translate(1, 2, 3) rotate_y(35) rotate_x(70) scale(0.7).
+    expectMitsubaSphereHits(oneShape(R"(<shape type="sphere"><float name="radius" value="0.7"/>
+        <transform name="to_world"><rotate x="1" angle="70"/><rotate y="1" angle="35"/>
+        <translate x="1" y="2" z="3"/></transform></shape>)"),
+                            {{{0.282216f, -0.188144f, -0.940721f},
+                              {0.390155f, 0.490004f},
+                              {-4.11982f, -1.15943f, -1.00406f},
+                              {-0.45112f, 2.08051f, -0.55144f},
+                              {-0.28222f, 0.18814f, 0.94072f}},
+                             {{-0.9759f, 0.09759f, 0.19518f},
+                              {0.057195f, 0.426628f},
+                              {0.92693f, 1.37095f, 3.94918f},
+                              {0.06051f, 2.07227f, -0.73358f},
+                              {0.9759f, -0.09759f, -0.19518f}},
+                             {{0.04969f, 0.993808f, -0.099381f},
+                              {0.69831f, 0.099056f},
+                              {0.81387f, -0.14698f, -1.06285f},
+                              {-1.74869f, -0.04584f, -1.3327f},
+                              {-0.04969f, -0.99381f, 0.09938f}}});
+    // A negative radius mirrors: to_object maps the hit to the antipode, the normals turn inwards.
+    expectMitsubaSphereHits(oneShape(R"(<shape type="sphere"><float name="radius" value="-2"/>
+        <transform name="to_world"><rotate z="1" angle="40"/></transform></shape>)"),
+                            {{{0.282216f, -0.188144f, -0.940721f},
+                              {0.795305f, 0.88985f},
+                              {-2.36429f, -3.54643f, 0},
+                              {4.91802f, -3.27868f, 2.13114f},
+                              {0.28222f, -0.18814f, -0.94072f}},
+                             {{0.04969f, 0.993808f, -0.099381f},
+                              {0.130938f, 0.531686f},
+                              {12.48856f, -0.62443f, 0},
+                              {0.03118f, 0.62365f, 6.25208f},
+                              {0.04969f, 0.99381f, -0.09938f}}});
 }
 
 TEST(MeshShapes, ObjThroughXmlWithTransformAndComputedNormals) {

@@ -1,8 +1,15 @@
-// texture_loader_test.cpp — <texture> plugins (bitmap, checkerboard, rawconstant), textured BSDF
-// parameters, bumpmap and normalmap: parameters, defaults, references and errors.
+// texture_loader_test.cpp — <texture> plugins (bitmap, checkerboard with nested textures,
+// rawconstant), textured BSDF parameters (principled weights, conductor eta/k), the spot's texture,
+// bumpmap and normalmap: parameters, defaults, references, errors, and bitmaps
+// smaller than 2 x 2 against Mitsuba.
 #include <Imath/half.h>
 
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
 #include "caustica/io/image_io.h"
+#include "caustica/scene/texture.h"
 #include "scene_test_util.h"
 
 namespace caustica::test {
@@ -156,6 +163,99 @@ TEST(TextureLoader, Errors) {
     EXPECT_TRUE(hasWarning(warnings, {"texture", "is declared but never used"}));
 }
 
+TEST(TextureLoader, NestedCheckerboards) {
+    TempDir dir;
+    writeTexture(dir);
+    const Scene s = loadXml(dir, sceneXml(R"(
+        <texture type="checkerboard" id="inner"><float name="color1" value="0.6"/></texture>
+        <shape type="sphere"><bsdf type="diffuse"><texture type="checkerboard" name="reflectance">
+            <ref name="color0" id="inner"/>
+            <texture type="bitmap" name="color1"><string name="filename" value="tex.png"/></texture>
+        </texture></bsdf></shape>
+        <shape type="sphere"><bsdf type="diffuse"><texture type="checkerboard" name="reflectance">
+            <texture type="rawconstant" name="color1"><float name="value" value="0.7"/></texture>
+        </texture></bsdf></shape>)"));
+    ASSERT_EQ(s.textures.size(), 5u);  // inner, bitmap, outer, rawconstant, second outer
+    const Texture& outer = s.textures[2];
+    EXPECT_EQ(outer.child0, 0u);  // children are built before their parent
+    EXPECT_EQ(outer.child1, 1u);
+    // Mitsuba's mean: the average of the colours' means.
+    EXPECT_NEAR(outer.mean, (s.textures[0].mean + s.textures[1].mean) / 2, 1e-7);
+    EXPECT_NEAR(s.textures[0].mean, 0.5f, 1e-7);
+    const Texture& folded = s.textures[4];  // a constant child is kept as a value
+    EXPECT_EQ(folded.child1, kNoTexture);
+    EXPECT_EQ(folded.value1.r, 0.7f);
+    expectError([&] { loadXml(dir, diffuseWith(R"(<texture type="checkerboard" name="reflectance">
+        <texture type="checkerboard" name="colour0"/></texture>)")); },
+                "scene.xml", 5, "texture 'colour0' is not a parameter of checkerboard");
+    expectError([&] { loadXml(dir, diffuseWith(R"(<texture type="checkerboard" name="reflectance">
+        <float name="color0" value="0.3"/><texture type="checkerboard" name="color0"/></texture>)")); },
+                "scene.xml", 5, "'color0' is given both as a value and as a texture");
+}
+
+TEST(TextureLoader, PrincipledAndConductorTextures) {
+    TempDir dir;
+    writeTexture(dir);
+    auto tex = [](const std::string& name) {
+        return R"(<texture type="bitmap" name=")" + name +
+               R"("><string name="filename" value="tex.png"/></texture>)";
+    };
+    const char* weights[] = {"roughness", "anisotropic", "metallic", "spec_tint", "sheen",
+                             "sheen_tint", "clearcoat", "clearcoat_gloss", "spec_trans",
+                             "flatness"};
+    std::string principled = tex("base_color");
+    for (const char* w : weights) principled += tex(w);
+    const Scene s = loadXml(dir, sceneXml(
+        "<shape type=\"sphere\"><bsdf type=\"principled\">" + principled +
+        "</bsdf></shape><shape type=\"sphere\"><bsdf type=\"roughconductor\">" + tex("eta") +
+        tex("k") + "</bsdf></shape>"));
+    const Bsdf& p = s.bsdfs[s.shapes[0].bsdf];
+    ASSERT_EQ(p.numTextures, 11u);
+    const BsdfParam expected[] = {BsdfParam::Reflectance, BsdfParam::Roughness,
+                                  BsdfParam::Anisotropic, BsdfParam::SpecTrans,
+                                  BsdfParam::Sheen,       BsdfParam::SheenTint,
+                                  BsdfParam::Flatness,    BsdfParam::SpecTint,
+                                  BsdfParam::Metallic,    BsdfParam::Clearcoat,
+                                  BsdfParam::ClearcoatGloss};
+    for (uint32_t i = 0; i < 11; ++i) EXPECT_EQ(p.textures[i].param, expected[i]) << i;
+    // A texture turns its lobe on (Mitsuba's get_flag).
+    EXPECT_TRUE(p.principled.hasAnisotropic && p.principled.hasSpecTrans &&
+                p.principled.hasSheen && p.principled.hasSheenTint && p.principled.hasFlatness &&
+                p.principled.hasSpecTint && p.principled.hasMetallic && p.principled.hasClearcoat);
+    const Bsdf& rc = s.bsdfs[s.shapes[1].bsdf];
+    ASSERT_EQ(rc.numTextures, 2u);
+    EXPECT_EQ(rc.textures[0].param, BsdfParam::Eta);
+    EXPECT_EQ(rc.textures[1].param, BsdfParam::K);
+    // Mitsuba 3.9.1 reads principled's specular and eta and roughplastic's alpha as floats.
+    expectError([&] { loadXml(dir, sceneXml("<shape type=\"sphere\"><bsdf type=\"principled\">\n" +
+                                            tex("specular") + "</bsdf></shape>")); },
+                "scene.xml", 4, "texture 'specular' is not a textured parameter of this plugin");
+    expectError([&] { loadXml(dir, sceneXml("<shape type=\"sphere\"><bsdf type=\"roughplastic\">" +
+                                            tex("alpha") + "</bsdf></shape>")); },
+                "scene.xml", 3, "'alpha' must be a float for roughplastic");
+    expectError([&] { loadXml(dir, sceneXml("<shape type=\"sphere\"><bsdf type=\"conductor\">" +
+                                            tex("eta") +
+                                            "<string name=\"material\" value=\"Au\"/></bsdf></shape>")); },
+                "scene.xml", 3, "cannot be combined with 'eta'/'k'");
+}
+
+TEST(TextureLoader, SpotTexture) {
+    TempDir dir;
+    writeTexture(dir);
+    const Scene s = loadXml(dir, sceneXml(R"(<emitter type="spot">
+        <float name="cutoff_angle" value="30"/>
+        <texture type="bitmap" name="texture"><string name="filename" value="tex.png"/></texture>
+    </emitter><emitter type="spot"/>)"));
+    ASSERT_EQ(s.lights.size(), 2u);
+    ASSERT_EQ(s.textures.size(), 1u);
+    EXPECT_EQ(s.lights[0].texture, 0u);
+    EXPECT_NEAR(s.lights[0].uvFactor, std::tan(30 * M_PI / 180), 1e-6);
+    EXPECT_EQ(s.lights[1].texture, kNoTexture);
+    expectError([&] { loadXml(dir, sceneXml(R"(<emitter type="spot">
+        <rgb name="texture" value="0.5"/></emitter>)")); },
+                "scene.xml", 4, "must be a spatially varying texture");
+}
+
 TEST(TextureLoader, BumpAndNormalMaps) {
     TempDir dir;
     writeTexture(dir);
@@ -203,6 +303,68 @@ TEST(TextureLoader, BumpAndNormalMaps) {
         <bsdf type="normalmap"><texture type="bitmap" name="normalmap"><string name="filename" value="tex.png"/></texture>
         <bsdf type="diffuse"/></bsdf></bsdf></shape>)")); },
                 "scene.xml", 5, "cannot nest a bumpmap or normalmap in another one");
+}
+
+/// A bitmap smaller than 2 x 2 evaluated as Mitsuba 3.9.1 does (scalar_rgb, texture.eval at the
+/// uvs below; it resamples the image to at least 2 x 2, repeating the lone row or column).
+struct MitsubaSmallBitmap {
+    int width, height;
+    std::vector<int> bytes;  // 8-bit sRGB, row by row
+    const char* filter;
+    const char* wrap;
+    std::vector<Spectrum> expected;  // at kSmallBitmapUvs
+};
+
+const Vec2f kSmallBitmapUvs[5] = {{0.1f, 0.2f}, {0.5f, 0.5f}, {0.9f, 0.77f}, {0.33f, 0.95f},
+                                  {1.3f, -0.2f}};
+
+TEST(TextureLoader, BitmapsSmallerThan2x2AreEvaluatedAsMitsuba) {
+    const std::vector<int> row = {243, 8, 36, 210, 242, 63, 79, 222, 108};
+    const std::vector<int> column = {69, 211, 65, 104, 164, 140, 21, 7, 221};
+    const Spectrum r0(0.896269f, 0.002428f, 0.017642f), r1(0.64448f, 0.887923f, 0.049707f),
+        r2(0.078187f, 0.730461f, 0.14996f);
+    const Spectrum c0(0.059511f, 0.651406f, 0.052861f), c1(0.138432f, 0.371238f, 0.262251f),
+        c2(0.007499f, 0.002125f, 0.723055f);
+    const Spectrum one(0.191202f, 0.226966f, 0.533277f);
+    const MitsubaSmallBitmap cases[] = {
+        {1, 1, {121, 131, 193}, "bilinear", "repeat", {one, one, one, one, one}},
+        {1, 1, {121, 131, 193}, "nearest", "mirror", {one, one, one, one, one}},
+        {3, 1, row, "bilinear", "repeat",
+         {{0.732653f, 0.148035f, 0.044106f}, r1, {0.241804f, 0.584854f, 0.123496f},
+          {0.772892f, 0.436321f, 0.033354f}, {0.795553f, 0.356626f, 0.030468f}}},
+        {3, 1, row, "bilinear", "clamp", {r0, r1, r2, {0.772892f, 0.436321f, 0.033354f}, r2}},
+        {3, 1, row, "nearest", "mirror", {r0, r1, r2, r0, r2}},
+        {1, 3, column, "bilinear", "mirror",
+         {{0.067403f, 0.623389f, 0.0738f}, c1, {0.032376f, 0.072256f, 0.635502f}, c2,
+          {0.067403f, 0.623389f, 0.0738f}}},
+        {1, 3, column, "nearest", "repeat", {c0, c1, c2, c2, c2}},
+    };
+    for (const MitsubaSmallBitmap& c : cases) {
+        SCOPED_TRACE(std::to_string(c.width) + "x" + std::to_string(c.height) + " " + c.filter +
+                     " " + c.wrap);
+        TempDir dir;
+        Image img(c.width, c.height);
+        const auto decode = [&](int j) { return srgbToLinear(float(c.bytes[size_t(j)]) / 255); };
+        for (int i = 0; i < c.width * c.height; ++i)
+            img.set(i % c.width, i / c.width, {decode(3 * i), decode(3 * i + 1), decode(3 * i + 2)});
+        writeImage(dir.path("small.png"), img);
+        const std::string xml = std::string(R"(<texture type="bitmap" name="reflectance">
+            <string name="filename" value="small.png"/><string name="filter_type" value=")") +
+                                c.filter + R"("/><string name="wrap_mode" value=")" + c.wrap +
+                                R"("/></texture>)";
+        const Scene s = loadXml(dir, diffuseWith(xml));
+        ASSERT_EQ(s.textures.size(), 1u);
+        EXPECT_EQ(s.textures[0].width, std::max(c.width, 2));
+        EXPECT_EQ(s.textures[0].height, std::max(c.height, 2));
+        for (int k = 0; k < 5; ++k) {
+            const Spectrum v = evalTexture(s.view().textureView(), 0, kSmallBitmapUvs[k]);
+            // Mitsuba 3.9.1 keeps 8-bit texels as bytes; caustica rounds them to half floats
+            // (relative error below 2^-12).
+            EXPECT_NEAR(v.r, c.expected[k].r, 3e-4) << "uv " << k;
+            EXPECT_NEAR(v.g, c.expected[k].g, 3e-4) << "uv " << k;
+            EXPECT_NEAR(v.b, c.expected[k].b, 3e-4) << "uv " << k;
+        }
+    }
 }
 
 }  // namespace

@@ -2,13 +2,11 @@
 // consistency of the sampled weight and pdf with evalBsdf / pdfBsdf.
 #include <gtest/gtest.h>
 
-#include <cstdio>
 #include <cstdlib>
 #include <string>
 #include <vector>
 
 #include "caustica/scene/bsdf.h"
-#include "caustica/util/rng.h"
 #include "scene/bsdf_test_util.h"
 #include "scene/chi2.h"
 
@@ -16,70 +14,36 @@ namespace caustica {
 namespace {
 
 using test::SphereGrid;
-
-struct Chi2Case {
-    std::string name;
-    std::vector<Bsdf> bsdfs;
-    uint32_t id = 0;
-    Vec3f n{0, 0, 1};           // shading normal
-    double thetaO = 0, phiO = 0;  // viewing direction wo in degrees, in the frame of n
-    int nTheta = 64, nPhi = 128;  // histogram resolution
-    int k = 4;                    // Simpson subintervals per bin and axis (checked against 2k)
-};
-
-void PrintTo(const Chi2Case& c, std::ostream* os) { *os << c.name; }
-
-constexpr int kSamples = 1000000;
+using Chi2Case = test::BsdfChi2Case;
 
 /// Samples the BSDF, checking every sample against evalBsdf/pdfBsdf, and runs the χ² test.
 void runBsdfChi2(const Chi2Case& c, uint64_t seed) {
     const Span<const Bsdf> bsdfs(c.bsdfs);
-    const SurfaceInteraction si = test::surfaceAt(c.n);
-    const Frame frame(si.ns);
-    const Vec3f wo = test::directionDeg(frame, c.thetaO, c.phiO);
-    SphereGrid grid;
-    grid.frame = frame;
-    grid.nTheta = c.nTheta;
-    grid.nPhi = c.nPhi;
-
-    int badWeight = 0, badPdf = 0, badDir = 0, badDelta = 0;
-    std::string firstBad;
-    auto sample = [&](int i, Vec3f& w) {
-        IndependentSampler rng(uint64_t(i), 0, seed);
-        const Float uLobe = rng.get1D();
-        const Vec2f u = rng.get2D();
-        BsdfSample bs;
-        if (!sampleBsdf(bsdfs, c.id, si, wo, uLobe, u, bs)) return false;
+    const test::BsdfChi2View v(c);
+    const SurfaceInteraction& si = v.si;
+    const Vec3f wo = v.wo;
+    test::BsdfSampleCheck check;
+    int badDir = 0, badDelta = 0;
+    auto keep = [&](const BsdfSample& bs) {
         if (bs.delta) {
             // A delta lobe beside a smooth one (plastic's coating): the mirror direction, and
             // outside the histogram, whose expected counts integrate only the smooth lobe's pdf.
-            const Vec3f mirror = si.ns * (2 * dot(wo, si.ns)) - wo;
-            if (length(bs.wi - mirror) > 1e-4f || !(bs.pdf > 0 && bs.pdf <= 1)) ++badDelta;
+            if (length(bs.wi - test::mirrorOf(si, wo)) > 1e-4f || !(bs.pdf > 0 && bs.pdf <= 1))
+                ++badDelta;
             return false;
         }
-        const Spectrum f = evalBsdf(bsdfs, c.id, si, wo, bs.wi);
-        const Float pdf = pdfBsdf(bsdfs, c.id, si, wo, bs.wi);
+        check.check(bsdfs, c.id, si, wo, bs);
         // η is 1 for a reflection, the interface's relative IOR for a refraction.
         const bool sameSide = dot(bs.wi, si.ns) * dot(wo, si.ns) > 0;
         if (std::fabs(length(bs.wi) - 1) > 1e-5f || bs.delta || (sameSide != (bs.eta == 1)))
             ++badDir;
-        if (!test::relClose(bs.pdf, pdf)) ++badPdf;
-        for (int ch = 0; ch < 3; ++ch)
-            if (!(pdf > 0) || !test::relClose(bs.weight[ch], f[ch] / pdf)) {
-                if (badWeight++ == 0)
-                    firstBad = "weight " + std::to_string(bs.weight[ch]) + " vs f/pdf " +
-                               std::to_string(f[ch] / pdf);
-                break;
-            }
-        w = bs.wi;
         return true;
     };
-    auto pdf = [&](Vec3f w) { return double(pdfBsdf(bsdfs, c.id, si, wo, w)); };
-    const test::Chi2Result r = test::chi2Directions(grid, kSamples, sample, pdf, c.k);
+    const test::Chi2Result r = test::bsdfChi2(bsdfs, bsdfs, c.id, si, wo, v.grid, seed, c.k, keep);
     EXPECT_TRUE(r.passed()) << c.name << ": " << r.describe();
-    if (std::getenv("CAUSTICA_CHI2_VERBOSE")) std::printf("%s: %s\n", c.name.c_str(), r.describe().c_str());
-    EXPECT_EQ(badWeight, 0) << c.name << ": " << firstBad;
-    EXPECT_EQ(badPdf, 0) << c.name;
+    test::printChi2IfVerbose(c.name, r);
+    EXPECT_EQ(check.badWeight, 0) << c.name << ": " << check.firstBad;
+    EXPECT_EQ(check.badPdf, 0) << c.name;
     EXPECT_EQ(badDir, 0) << c.name;
     EXPECT_EQ(badDelta, 0) << c.name;
 }
@@ -192,22 +156,13 @@ INSTANTIATE_TEST_SUITE_P(AllNonDelta, BsdfChi2, ::testing::ValuesIn(makeCases())
 
 // The test must be able to fail: a 3% roughness mismatch between sampling and pdf is rejected.
 TEST(BsdfChi2Power, RejectsSlightlyWrongPdf) {
-    std::vector<Bsdf> sampled{test::roughConductor(0.3f, 0.3f)};
-    std::vector<Bsdf> claimed{test::roughConductor(0.31f, 0.31f)};
+    const std::vector<Bsdf> sampled{test::roughConductor(0.3f, 0.3f)};
+    const std::vector<Bsdf> claimed{test::roughConductor(0.31f, 0.31f)};
     const SurfaceInteraction si = test::surfaceAt(Vec3f(0, 0, 1));
     const Vec3f wo = test::directionDeg(Frame(si.ns), 40, 0);
     SphereGrid grid;
     grid.frame = Frame(si.ns);
-    auto sample = [&](int i, Vec3f& w) {
-        IndependentSampler rng(uint64_t(i), 0, 77);
-        const Float uLobe = rng.get1D();
-        BsdfSample bs;
-        if (!sampleBsdf(sampled, 0, si, wo, uLobe, rng.get2D(), bs)) return false;
-        w = bs.wi;
-        return true;
-    };
-    auto pdf = [&](Vec3f w) { return double(pdfBsdf(claimed, 0, si, wo, w)); };
-    const test::Chi2Result r = test::chi2Directions(grid, kSamples, sample, pdf);
+    const test::Chi2Result r = test::bsdfChi2(sampled, claimed, 0, si, wo, grid, 77);
     EXPECT_TRUE(r.error.empty()) << r.describe();
     EXPECT_LT(r.pValue, test::kChi2Significance) << r.describe();
 }
@@ -222,16 +177,7 @@ TEST(BsdfChi2Power, RejectsWrongBeckmannPdf) {
     const std::vector<Bsdf> sampled{test::beckmannConductor(0.3f, 0.3f)};
     for (const Bsdf& wrong : {test::beckmannConductor(0.31f, 0.31f), test::roughConductor(0.3f, 0.3f)}) {
         const std::vector<Bsdf> claimed{wrong};
-        auto sample = [&](int i, Vec3f& w) {
-            IndependentSampler rng(uint64_t(i), 0, 78);
-            const Float uLobe = rng.get1D();
-            BsdfSample bs;
-            if (!sampleBsdf(sampled, 0, si, wo, uLobe, rng.get2D(), bs)) return false;
-            w = bs.wi;
-            return true;
-        };
-        auto pdf = [&](Vec3f w) { return double(pdfBsdf(claimed, 0, si, wo, w)); };
-        const test::Chi2Result r = test::chi2Directions(grid, kSamples, sample, pdf);
+        const test::Chi2Result r = test::bsdfChi2(sampled, claimed, 0, si, wo, grid, 78);
         EXPECT_TRUE(r.error.empty()) << r.describe();
         EXPECT_LT(r.pValue, test::kChi2Significance) << r.describe();
     }

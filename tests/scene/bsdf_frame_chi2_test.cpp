@@ -4,8 +4,6 @@
 // per-sample weight == eval/pdf; and the orientation of anisotropic lobes along dp/du.
 #include <gtest/gtest.h>
 
-#include <cstdio>
-#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -16,8 +14,6 @@
 
 namespace caustica {
 namespace {
-
-constexpr int kSamples = 1000000;
 
 /// A 4 x 4 height field (raw luminance) for the bump and normal map cases.
 struct FrameTextures {
@@ -75,12 +71,7 @@ void runFrameChi2(const FrameCase& c, uint64_t seed) {
     // million 0.1% apart, so at most 2e-5 of them may miss the 0.1% tolerance.
     int bad = 0, gross = 0;
     std::string firstBad;
-    auto sample = [&](int i, Vec3f& w) {
-        IndependentSampler rng(uint64_t(i), 0, seed);
-        const Float uLobe = rng.get1D();
-        const Vec2f u = rng.get2D();
-        BsdfSample bs;
-        if (!sampleBsdf(bsdfs, c.id, si, wo, uLobe, u, bs)) return false;
+    auto keep = [&](const BsdfSample& bs) {
         const Spectrum f = evalBsdf(bsdfs, c.id, si, wo, bs.wi);
         const Float pdf = pdfBsdf(bsdfs, c.id, si, wo, bs.wi);
         if (!test::relClose(bs.pdf, pdf, 1e-2) || !(pdf > 0) ||
@@ -93,16 +84,13 @@ void runFrameChi2(const FrameCase& c, uint64_t seed) {
                            ", weight " + std::to_string(bs.weight.g) + " vs " +
                            std::to_string(f.g / pdf);
         }
-        w = bs.wi;
         return true;
     };
-    auto pdf = [&](Vec3f w) { return double(pdfBsdf(bsdfs, c.id, si, wo, w)); };
-    const test::Chi2Result r = test::chi2Directions(grid, kSamples, sample, pdf, 4);
+    const test::Chi2Result r = test::bsdfChi2(bsdfs, bsdfs, c.id, si, wo, grid, seed, 4, keep);
     EXPECT_TRUE(r.passed()) << c.name << ": " << r.describe();
-    if (std::getenv("CAUSTICA_CHI2_VERBOSE"))
-        std::printf("%s: %s\n", c.name.c_str(), r.describe().c_str());
+    test::printChi2IfVerbose(c.name, r);
     EXPECT_EQ(gross, 0) << c.name << ": " << firstBad;
-    EXPECT_LE(bad, kSamples / 50000) << c.name << ": " << firstBad;
+    EXPECT_LE(bad, test::kBsdfChi2Samples / 50000) << c.name << ": " << firstBad;
 }
 
 Bsdf adapter(BsdfType type, uint32_t nested, uint32_t texture, Float scale = 1) {

@@ -4,13 +4,10 @@
 // printed by Mitsuba 3.9.1 (scalar_rgb, through its Python bindings).
 #include <gtest/gtest.h>
 
-#include <cstdio>
-#include <cstdlib>
 #include <string>
 #include <vector>
 
 #include "caustica/scene/bsdf.h"
-#include "caustica/util/rng.h"
 #include "scene/bsdf_more_util.h"
 #include "scene/bsdf_test_util.h"
 #include "scene/chi2.h"
@@ -18,20 +15,7 @@
 namespace caustica {
 namespace {
 
-using test::SphereGrid;
-
-struct Chi2Case {
-    std::string name;
-    std::vector<Bsdf> bsdfs;
-    uint32_t id = 0;
-    Vec3f n{0, 0, 1};
-    double thetaO = 0, phiO = 0;
-    int nTheta = 64, nPhi = 128;
-};
-
-void PrintTo(const Chi2Case& c, std::ostream* os) { *os << c.name; }
-
-constexpr int kSamples = 1000000;
+using Chi2Case = test::BsdfChi2Case;
 
 uint64_t seedOf(const std::string& name) {
     uint64_t h = 0x84222325cbf29ce4ull;
@@ -41,48 +25,27 @@ uint64_t seedOf(const std::string& name) {
 
 void runChi2(const Chi2Case& c) {
     const Span<const Bsdf> bsdfs(c.bsdfs);
-    const SurfaceInteraction si = test::surfaceAt(c.n);
-    const Frame frame(si.ns);
-    const Vec3f wo = test::directionDeg(frame, c.thetaO, c.phiO);
-    SphereGrid grid;
-    grid.frame = frame;
-    grid.nTheta = c.nTheta;
-    grid.nPhi = c.nPhi;
-    const uint64_t seed = seedOf(c.name);
-    int badWeight = 0, badPdf = 0, badDelta = 0;
-    std::string firstBad;
-    auto sample = [&](int i, Vec3f& w) {
-        IndependentSampler rng(uint64_t(i), 0, seed);
-        const Float uLobe = rng.get1D();
-        const Vec2f u = rng.get2D();
-        BsdfSample bs;
-        if (!sampleBsdf(bsdfs, c.id, si, wo, uLobe, u, bs)) return false;
+    const test::BsdfChi2View v(c);
+    const SurfaceInteraction& si = v.si;
+    const Vec3f wo = v.wo;
+    test::BsdfSampleCheck check;
+    int badDelta = 0;
+    auto keep = [&](const BsdfSample& bs) {
         if (bs.delta) {  // a mirror or a straight pass-through, outside the histogram
-            const Vec3f mirror = si.ns * (2 * dot(wo, si.ns)) - wo;
-            const bool ok = length(bs.wi - mirror) < 1e-4f || length(bs.wi + wo) < 1e-4f;
+            const bool ok =
+                length(bs.wi - test::mirrorOf(si, wo)) < 1e-4f || length(bs.wi + wo) < 1e-4f;
             if (!ok || !(bs.pdf > 0) || !bs.weight.isValid()) ++badDelta;
             return false;
         }
-        const Spectrum f = evalBsdf(bsdfs, c.id, si, wo, bs.wi);
-        const Float pdf = pdfBsdf(bsdfs, c.id, si, wo, bs.wi);
-        if (!test::relClose(bs.pdf, pdf)) ++badPdf;
-        for (int ch = 0; ch < 3; ++ch)
-            if (!(pdf > 0) || !test::relClose(bs.weight[ch], f[ch] / pdf)) {
-                if (badWeight++ == 0)
-                    firstBad = "weight " + std::to_string(bs.weight[ch]) + " vs f/pdf " +
-                               std::to_string(f[ch] / pdf);
-                break;
-            }
-        w = bs.wi;
+        check.check(bsdfs, c.id, si, wo, bs);
         return true;
     };
-    auto pdf = [&](Vec3f w) { return double(pdfBsdf(bsdfs, c.id, si, wo, w)); };
-    const test::Chi2Result r = test::chi2Directions(grid, kSamples, sample, pdf, 4);
+    const test::Chi2Result r =
+        test::bsdfChi2(bsdfs, bsdfs, c.id, si, wo, v.grid, seedOf(c.name), c.k, keep);
     EXPECT_TRUE(r.passed()) << c.name << ": " << r.describe();
-    if (std::getenv("CAUSTICA_CHI2_VERBOSE"))
-        std::printf("%s: %s\n", c.name.c_str(), r.describe().c_str());
-    EXPECT_EQ(badWeight, 0) << c.name << ": " << firstBad;
-    EXPECT_EQ(badPdf, 0) << c.name;
+    test::printChi2IfVerbose(c.name, r);
+    EXPECT_EQ(check.badWeight, 0) << c.name << ": " << check.firstBad;
+    EXPECT_EQ(check.badPdf, 0) << c.name;
     EXPECT_EQ(badDelta, 0) << c.name;
 }
 

@@ -1,10 +1,16 @@
-// bsdf_test_util.h — small builders shared by the BSDF tests (test helper, host only).
+// bsdf_test_util.h — small builders and the χ² sampling harness shared by the BSDF tests (test
+// helper, host only).
 #pragma once
 
 #include <cmath>
+#include <functional>
+#include <ostream>
+#include <string>
 #include <vector>
 
 #include "caustica/scene/bsdf.h"
+#include "caustica/util/rng.h"
+#include "scene/chi2.h"
 
 namespace caustica::test {
 
@@ -107,5 +113,90 @@ inline uint32_t addTwoSided(std::vector<Bsdf>& bsdfs, const Bsdf& front, const B
 inline bool relClose(double a, double b, double rel = 1e-3, double absFloor = 1e-6) {
     return std::fabs(a - b) <= rel * std::max(std::fabs(a), std::fabs(b)) + absFloor;
 }
+
+/// Samples per BSDF χ² test.
+inline constexpr int kBsdfChi2Samples = 1000000;
+
+/// One χ² case of a BSDF seen from a fixed direction: bsdfs[id] at a surface point with shading
+/// normal n, viewed along wo at (thetaO, phiO) degrees in the frame of n.
+struct BsdfChi2Case {
+    std::string name;
+    std::vector<Bsdf> bsdfs;
+    uint32_t id = 0;
+    Vec3f n{0, 0, 1};             // shading normal
+    double thetaO = 0, phiO = 0;  // viewing direction wo in degrees, in the frame of n
+    int nTheta = 64, nPhi = 128;  // histogram resolution
+    int k = 4;                    // Simpson subintervals per bin and axis (checked against 2k)
+};
+
+inline void PrintTo(const BsdfChi2Case& c, std::ostream* os) { *os << c.name; }
+
+/// The surface point, viewing direction and histogram grid of a BsdfChi2Case.
+struct BsdfChi2View {
+    SurfaceInteraction si;
+    Vec3f wo;
+    SphereGrid grid;
+
+    explicit BsdfChi2View(const BsdfChi2Case& c) : si(surfaceAt(c.n)) {
+        grid.frame = Frame(si.ns);
+        grid.nTheta = c.nTheta;
+        grid.nPhi = c.nPhi;
+        wo = directionDeg(grid.frame, c.thetaO, c.phiO);
+    }
+};
+
+/// Sample i of sampleBsdf(bsdfs, id, si, wo), its numbers (uLobe, then u) drawn from
+/// IndependentSampler(i, 0, seed).
+inline bool sampleBsdfAt(Span<const Bsdf> bsdfs, uint32_t id, const SurfaceInteraction& si,
+                         Vec3f wo, int i, uint64_t seed, BsdfSample& bs) {
+    IndependentSampler rng(uint64_t(i), 0, seed);
+    const Float uLobe = rng.get1D();
+    const Vec2f u = rng.get2D();
+    return sampleBsdf(bsdfs, id, si, wo, uLobe, u, bs);
+}
+
+/// χ² test (chi2Directions, k Simpson subintervals) of kBsdfChi2Samples directions drawn by
+/// sampleBsdfAt(sampled, ...) against pdfBsdf(claimed, id, si, wo) on `grid`. `keep` sees every
+/// sample drawn and says whether its direction enters the histogram (else it counts as none).
+inline Chi2Result bsdfChi2(Span<const Bsdf> sampled, Span<const Bsdf> claimed, uint32_t id,
+                           const SurfaceInteraction& si, Vec3f wo, const SphereGrid& grid,
+                           uint64_t seed, int k = 4,
+                           const std::function<bool(const BsdfSample&)>& keep = {}) {
+    auto sample = [&](int i, Vec3f& w) {
+        BsdfSample bs;
+        if (!sampleBsdfAt(sampled, id, si, wo, i, seed, bs) || (keep && !keep(bs))) return false;
+        w = bs.wi;
+        return true;
+    };
+    auto pdf = [&](Vec3f w) { return double(pdfBsdf(claimed, id, si, wo, w)); };
+    return chi2Directions(grid, kBsdfChi2Samples, sample, pdf, k);
+}
+
+/// The mirror of wo about the shading normal (the direction of a specular reflection).
+inline Vec3f mirrorOf(const SurfaceInteraction& si, Vec3f wo) {
+    return si.ns * (2 * dot(wo, si.ns)) - wo;
+}
+
+/// Per-sample consistency of smooth BSDF samples with evalBsdf / pdfBsdf (relClose): counts those
+/// whose pdf differs from pdfBsdf and those whose weight differs from f / pdf in some channel,
+/// describing the first of the latter.
+struct BsdfSampleCheck {
+    int badWeight = 0, badPdf = 0;
+    std::string firstBad;
+
+    void check(Span<const Bsdf> bsdfs, uint32_t id, const SurfaceInteraction& si, Vec3f wo,
+               const BsdfSample& bs) {
+        const Spectrum f = evalBsdf(bsdfs, id, si, wo, bs.wi);
+        const Float pdf = pdfBsdf(bsdfs, id, si, wo, bs.wi);
+        if (!relClose(bs.pdf, pdf)) ++badPdf;
+        for (int ch = 0; ch < 3; ++ch)
+            if (!(pdf > 0) || !relClose(bs.weight[ch], f[ch] / pdf)) {
+                if (badWeight++ == 0)
+                    firstBad = "weight " + std::to_string(bs.weight[ch]) + " vs f/pdf " +
+                               std::to_string(f[ch] / pdf);
+                break;
+            }
+    }
+};
 
 }  // namespace caustica::test

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <functional>
 #include <numeric>
 #include <string>
@@ -80,6 +81,12 @@ struct Chi2Result {
         return buf;
     }
 };
+
+/// Prints `name: result` when the environment sets CAUSTICA_CHI2_VERBOSE (to tune tests).
+inline void printChi2IfVerbose(const std::string& name, const Chi2Result& r) {
+    if (std::getenv("CAUSTICA_CHI2_VERBOSE"))
+        std::printf("%s: %s\n", name.c_str(), r.describe().c_str());
+}
 
 /// Pearson's χ² test of observed against expected counts. Cells with expected count below
 /// `minExpected` are pooled into one cell (if that pool is still too small it joins the

@@ -1,10 +1,12 @@
 // χ² goodness-of-fit tests of light sampling against pdfAreaLight / pdfEnvironmentLight, with a
-// per-sample check that the pdf sampleLight reports is the one the pdf functions give.
+// per-sample check that the pdf sampleLight reports is the one the pdf functions give; one-sided
+// area lights (sphere, cylinder) send nothing to a point behind them.
 #include <gtest/gtest.h>
 
 #include <string>
 #include <vector>
 
+#include "accel/cylinder_reference.h"
 #include "caustica/scene/light.h"
 #include "caustica/util/rng.h"
 #include "scene/bsdf_test_util.h"
@@ -122,9 +124,8 @@ TEST(LightChi2, SphereFromInside) {
     sphereChi2(scene, Vec3f(0.5f, 0.3f, -1.2f), grid, 12);
 }
 
-TEST(LightChi2, SphereFromInsideWithoutFlipEmitsNothingInwards) {
-    Scene scene;
-    test::addAreaLight(scene, test::addSphere(scene, {0, 0, 0}, 2.0f), Spectrum(1.f));
+/// How many of 1000 light samples drawn from `ref` exist.
+int lightSamplesDrawn(Scene& scene, Vec3f ref) {
     finalizeLights(scene);
     const SceneView view = scene.view();
     int hits = 0;
@@ -132,9 +133,22 @@ TEST(LightChi2, SphereFromInsideWithoutFlipEmitsNothingInwards) {
         IndependentSampler rng(uint64_t(i), 0, 5);
         LightSample ls;
         const Float uSel = rng.get1D();
-        hits += sampleLight(view, Vec3f(0.1f, 0.2f, 0.3f), uSel, rng.get2D(), ls);
+        hits += sampleLight(view, ref, uSel, rng.get2D(), ls);
     }
-    EXPECT_EQ(hits, 0);
+    return hits;
+}
+
+TEST(LightChi2, SphereFromInsideWithoutFlipEmitsNothingInwards) {
+    Scene scene;
+    test::addAreaLight(scene, test::addSphere(scene, {0, 0, 0}, 2.0f), Spectrum(1.f));
+    EXPECT_EQ(lightSamplesDrawn(scene, Vec3f(0.1f, 0.2f, 0.3f)), 0);
+}
+
+TEST(CylinderLight, OutwardCylinderSendsNothingInwards) {
+    Scene scene;
+    test::addAreaLight(scene, test::addCylinder(scene, {0, 0, 0}, {0, 0, 1}, 1, 2, false),
+                       Spectrum(1));
+    EXPECT_EQ(lightSamplesDrawn(scene, Vec3f(0.1f, 0.2f, 1.0f)), 0);
 }
 
 TEST(LightChi2, Environment) {

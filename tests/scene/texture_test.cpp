@@ -1,5 +1,6 @@
-// texture_test.cpp — texture evaluation (filters, wrap modes, to_uv, checkerboard, gradient),
-// textured BSDF parameters, and the dp/du shading frame of meshes and spheres.
+// texture_test.cpp — texture evaluation (filters, wrap modes, to_uv, checkerboard and nested
+// checkerboards, eval_1, gradient), textured BSDF parameters (principled weights, conductor
+// eta/k), the spot light's texture, and the dp/du shading frame of meshes and spheres.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,6 +8,7 @@
 
 #include "caustica/scene/bsdf.h"
 #include "caustica/scene/interaction.h"
+#include "caustica/scene/light_delta.h"
 #include "caustica/scene/texture.h"
 #include "scene/bsdf_test_util.h"
 #include "scene/scene_builder.h"
@@ -38,6 +40,12 @@ void expectNear(Spectrum a, Spectrum b, Float tol = 1e-6f) {
     EXPECT_NEAR(a.r, b.r, tol);
     EXPECT_NEAR(a.g, b.g, tol);
     EXPECT_NEAR(a.b, b.b, tol);
+}
+
+void expectNear(Vec3f a, Vec3f b, Float tol = 1e-6f) {
+    EXPECT_NEAR(a.x, b.x, tol);
+    EXPECT_NEAR(a.y, b.y, tol);
+    EXPECT_NEAR(a.z, b.z, tol);
 }
 
 /// Mirror wrap written independently: period 2·res, the second half reversed.
@@ -126,7 +134,53 @@ TEST(Texture, CheckerboardAlternatesAsMitsuba) {
     EXPECT_EQ(evalTexture(view, 0, Vec2f(-0.25f, 0.25f)).r, 0.2f);  // frac(-0.25) = 0.75
     textures[0].toUv[0] = textures[0].toUv[4] = 2;  // four tiles per unit
     EXPECT_EQ(evalTexture(view, 0, Vec2f(0.375f, 0.125f)).r, 0.2f);
-    EXPECT_EQ(evalTexture1(view, 0, Vec2f(0.1f, 0.1f)), Spectrum(0.4f).luminance());
+    // Mitsuba 3.9.1's eval_1 takes the other colour than eval (its mask test is mask.x != mask.y).
+    EXPECT_FLOAT_EQ(evalTexture1(view, 0, Vec2f(0.1f, 0.1f)), 0.2f);
+    EXPECT_FLOAT_EQ(evalTexture1(view, 0, Vec2f(0.375f, 0.125f)), 0.4f);
+}
+
+// Values printed by Mitsuba 3.9.1 (scalar_rgb, Python): a colour value's eval_1 is its mean
+// (srgb texture), a bitmap's is its luminance.
+TEST(Texture, Eval1OfColourValuesIsTheirMeanAndOfBitmapsTheLuminance) {
+    std::vector<Texture> textures(1);
+    textures[0].type = TextureType::Checkerboard;
+    textures[0].value = Spectrum(0.9f, 0.1f, 0.1f);
+    textures[0].value1 = Spectrum(0.1f, 0.1f, 0.9f);
+    EXPECT_NEAR(evalTexture1({textures, {}}, 0, Vec2f(0.25f, 0.25f)), 0.3666667f, 1e-6f);
+    std::vector<Spectrum> texels(4, Spectrum(0.9f, 0.1f, 0.1f));
+    Texture bm;
+    bm.type = TextureType::Bitmap;
+    bm.width = bm.height = 2;
+    textures.assign(1, bm);
+    EXPECT_NEAR(evalTexture1({textures, texels}, 0, Vec2f(0.3f, 0.3f)), 0.2701368f, 1e-6f);
+}
+
+// Mitsuba 3.9.1 (checked through its Python bindings): a checkerboard's colours may be
+// textures, evaluated at the outer interaction's uv (not at the outer to_uv's), and eval_1
+// swaps the colours at every level.
+TEST(Texture, NestedCheckerboardEvaluatesChildrenAtTheUnchangedUv) {
+    std::vector<Texture> textures(3);
+    textures[0].type = TextureType::Checkerboard;  // inner: 0.8 / 0.3
+    textures[0].value = Spectrum(0.8f);
+    textures[0].value1 = Spectrum(0.3f);
+    textures[1].type = TextureType::Checkerboard;  // middle: inner / 0.1, to_uv scale 0.5
+    textures[1].child0 = 0;
+    textures[1].value1 = Spectrum(0.1f);
+    textures[1].toUv[0] = textures[1].toUv[4] = 0.5f;
+    textures[2].type = TextureType::Checkerboard;  // outer: 0.6 / middle
+    textures[2].value = Spectrum(0.6f);
+    textures[2].child1 = 1;
+    const TextureView view{textures, {}};
+    // middle at (0.6, 0.1): uv' = (0.3, 0.05) -> color0 = inner at (0.6, 0.1) -> color1 = 0.3
+    // (at the scaled uv the inner board would give 0.8). Mitsuba: eval 0.3, eval_1 0.1.
+    EXPECT_EQ(evalTexture(view, 1, Vec2f(0.6f, 0.1f)).r, 0.3f);
+    EXPECT_FLOAT_EQ(evalTexture1(view, 1, Vec2f(0.6f, 0.1f)), 0.1f);
+    EXPECT_EQ(evalTexture(view, 1, Vec2f(0.1f, 0.1f)).r, 0.8f);
+    // Three levels: outer at (0.75, 0.25) is color1 -> middle -> inner -> 0.3; eval_1 at
+    // (0.25, 0.25) takes outer color1 -> middle color1 = 0.1.
+    EXPECT_EQ(evalTexture(view, 2, Vec2f(0.75f, 0.25f)).r, 0.3f);
+    EXPECT_FLOAT_EQ(evalTexture1(view, 2, Vec2f(0.25f, 0.25f)), 0.1f);
+    EXPECT_FLOAT_EQ(evalTexture1(view, 2, Vec2f(0.75f, 0.25f)), 0.6f);
 }
 
 TEST(Texture, GradientMatchesFiniteDifferencesOfTheLuminance) {
@@ -184,6 +238,103 @@ TEST(Texture, TexturedBsdfParameterIsEvaluatedAtUv) {
         ASSERT_TRUE(sampleBsdf(bsdfs, 0, si, wo, 0.5f, Vec2f(0.3f, 0.6f), bs));
         expectNear(bs.weight, bm.texel(x, 1));
     }
+}
+
+/// A BSDF with its textured parameters evaluated must equal the BSDF built with those values.
+void expectSameBsdf(const Bsdf& textured, const Bsdf& plain, const SurfaceInteraction& si) {
+    const std::vector<Bsdf> a{textured}, b{plain};
+    for (Vec3f wi : {normalize(Vec3f(-0.3f, 0.2f, 1)), normalize(Vec3f(0.6f, -0.1f, 0.4f)),
+                     normalize(Vec3f(0.1f, 0.3f, -1))}) {
+        const Vec3f wo = normalize(Vec3f(0.2f, 0.1f, 1));
+        expectNear(evalBsdf(a, 0, si, wo, wi), evalBsdf(b, 0, si, wo, wi));
+        EXPECT_NEAR(pdfBsdf(a, 0, si, wo, wi), pdfBsdf(b, 0, si, wo, wi), 1e-6f);
+    }
+    for (Float uLobe : {0.05f, 0.3f, 0.6f, 0.95f}) {
+        BsdfSample sa, sb;
+        const Vec3f wo = normalize(Vec3f(0.2f, 0.1f, 1));
+        const bool oka = sampleBsdf(a, 0, si, wo, uLobe, Vec2f(0.3f, 0.6f), sa);
+        ASSERT_EQ(oka, sampleBsdf(b, 0, si, wo, uLobe, Vec2f(0.3f, 0.6f), sb));
+        if (!oka) continue;
+        expectNear(sa.wi, sb.wi);
+        expectNear(sa.weight, sb.weight);
+    }
+}
+
+// Every principled weight may be a texture (eval_1 at si.uv), as in Mitsuba 3.9.1.
+TEST(Texture, PrincipledWeightsAreTexturable) {
+    const BsdfParam params[] = {BsdfParam::Roughness, BsdfParam::Anisotropic,
+                                BsdfParam::Metallic,  BsdfParam::SpecTint,
+                                BsdfParam::Sheen,     BsdfParam::SheenTint,
+                                BsdfParam::Clearcoat, BsdfParam::ClearcoatGloss,
+                                BsdfParam::SpecTrans, BsdfParam::Flatness};
+    const Float values[] = {0.35f, 0.6f, 0.25f, 0.7f, 0.8f, 0.45f, 0.9f, 0.3f, 0.4f, 0.55f};
+    std::vector<Texture> textures;
+    for (Float v : values) {
+        Texture t;
+        t.type = TextureType::Checkerboard;  // eval_1 at uv (0.25, 0.25) reads color1
+        t.value = Spectrum(0.0f);
+        t.value1 = Spectrum(v);
+        textures.push_back(t);
+    }
+    Bsdf plain;
+    plain.type = BsdfType::Principled;
+    plain.reflectance = Spectrum(0.7f, 0.3f, 0.2f);
+    PrincipledParams& q = plain.principled;
+    q.hasAnisotropic = q.hasMetallic = q.hasSpecTint = q.hasSheen = q.hasSheenTint = true;
+    q.hasClearcoat = q.hasSpecTrans = q.hasFlatness = true;
+    Bsdf textured = plain;
+    for (int i = 0; i < 10; ++i) {
+        *bsdf_detail::principledSlot(plain.principled, params[i]) = values[i];
+        textured.textures[i] = {params[i], uint32_t(i)};
+    }
+    textured.numTextures = 10;
+    SurfaceInteraction si = test::surfaceAt(Vec3f(0, 0, 1));
+    si.textures = {textures, {}};
+    si.uv = Vec2f(0.25f, 0.25f);
+    EXPECT_EQ(plain.principled.flatness, 0.55f);  // principledSlot reached every field
+    EXPECT_EQ(plain.principled.roughness, 0.35f);
+    expectSameBsdf(textured, plain, si);
+}
+
+// Conductor eta and k may be textures (eval at si.uv).
+TEST(Texture, ConductorEtaAndKAreTexturable) {
+    std::vector<Texture> textures(2);
+    textures[0].value = Spectrum(0.2f, 0.9f, 1.1f);  // constant textures: eval returns the value
+    textures[1].value = Spectrum(3.5f, 2.5f, 1.5f);
+    const Bsdf plain = test::roughConductor(0.3f, 0.3f, textures[0].value, textures[1].value);
+    Bsdf textured = test::roughConductor(0.3f, 0.3f);
+    textured.textures[0] = {BsdfParam::Eta, 0};
+    textured.textures[1] = {BsdfParam::K, 1};
+    textured.numTextures = 2;
+    SurfaceInteraction si = test::surfaceAt(Vec3f(0, 0, 1));
+    si.textures = {textures, {}};
+    expectSameBsdf(textured, plain, si);
+}
+
+// Mitsuba's spot texture: uv = 0.5 + 0.5 (x, y) / (z tan(cutoff)) of the local direction.
+TEST(Texture, SpotTextureIsLookedUpAtMitsubasConeUv) {
+    TestBitmap bm(TextureFilter::Nearest, TextureWrap::Clamp);
+    Light l;
+    l.type = LightType::Spot;
+    l.radiance = Spectrum(2.0f);
+    const Float cutoff = Float(40 * M_PI / 180);
+    l.cutoff = cutoff;
+    l.cosCutoff = l.cosBeam = std::cos(cutoff);  // no falloff inside the cone
+    l.uvFactor = std::tan(cutoff);
+    l.localFromWorld[0] = Vec3f(1, 0, 0);
+    l.localFromWorld[1] = Vec3f(0, 1, 0);
+    l.localFromWorld[2] = Vec3f(0, 0, 1);
+    l.texture = 0;
+    for (int x = 0; x < 3; ++x)
+        for (int y = 0; y < 2; ++y) {
+            const Float u = (Float(x) + 0.5f) / 3, v = (Float(y) + 0.5f) / 2;
+            const Vec3f w = normalize(Vec3f((2 * u - 1) * l.uvFactor, (2 * v - 1) * l.uvFactor, 1));
+            ASSERT_GT(w.z, l.cosCutoff);  // every texel centre lies inside the cone
+            expectNear(spotIntensity(l, bm.view(), w), bm.texel(x, y) * 2.0f);
+        }
+    expectNear(spotIntensity(l, bm.view(), normalize(Vec3f(1, 0, 0.5f))), Spectrum(0.0f));
+    l.texture = kNoTexture;
+    expectNear(spotIntensity(l, bm.view(), Vec3f(0, 0, 1)), Spectrum(2.0f));
 }
 
 TEST(ShadingFrame, FollowsDpduAndFallsBackToTheNormalFrame) {

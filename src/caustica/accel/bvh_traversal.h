@@ -5,13 +5,14 @@
 // their entry distances, so that they are skipped on pop when a closer hit has been found
 // meanwhile.
 //
-// Two more variants share the slab and leaf tests (BvhTraversal): a short-stack traversal, whose
-// stack is a small ring buffer that drops its oldest entries when full and, once it runs empty
-// after such a loss, continues by backtracking through parent links (Bvh::parents); and the
-// stackless traversal, the same with no stack at all. Both follow the parent-link scheme of Hapala
-// et al., "Efficient Stack-less BVH Traversal for Ray Tracing" (SCCG 2011), on 4-wide nodes as in
-// Afra and Szirmay-Kalos, "Stackless Multi-BVH Traversal for CPU, MIC and GPU Ray Tracing" (CGF
-// 33(1), 2014), with the children of a node visited in the same order as the stack traversal.
+// Two more variants share the slab tests, the child ordering and the leaf step (BvhTraversal): a
+// short-stack traversal, whose stack is a small ring buffer that drops its oldest entries when full
+// and, once it runs empty after such a loss, continues by backtracking through parent links
+// (Bvh::parents); and the stackless traversal, the same with no stack at all. Both follow the
+// parent-link scheme of Hapala et al., "Efficient Stack-less BVH Traversal for Ray Tracing" (SCCG
+// 2011), on 4-wide nodes as in Afra and Szirmay-Kalos, "Stackless Multi-BVH Traversal for CPU, MIC
+// and GPU Ray Tracing" (CGF 33(1), 2014), with the children of a node visited in the same order as
+// the stack traversal.
 //
 // Choices measured with bench/bench_rays.cpp (docs/PERFORMANCE.md): 4-wide nodes with SoA boxes
 // (1.3-1.7x faster than the binary layout they are collapsed from); the next node chosen with
@@ -69,9 +70,12 @@ CA_HD_INLINE uint32_t intersectChildren(const BvhNode& node, const TraversalRay&
     return mask;
 }
 
-/// Indices of the children in `mask`, front to back by entry distance (insertion sort of <= 4;
-/// ties keep slot order). Returns how many there are.
-CA_HD_INLINE int sortChildrenByEntry(uint32_t mask, const Float* tEntry, int* order) {
+/// Orders the children in `mask` (not empty) front to back by entry distance (insertion sort of
+/// <= 4; ties keep slot order), hands the farther ones to push(slot), far to near, and returns the
+/// slot of the nearest, which is visited next.
+template <class Push>
+CA_HD_INLINE int orderChildren(uint32_t mask, const Float* tEntry, Push&& push) {
+    int order[BvhNode::kWidth];
     int n = 0;
     for (int k = 0; k < BvhNode::kWidth; ++k) {
         if (!(mask & (1u << k))) continue;
@@ -79,7 +83,8 @@ CA_HD_INLINE int sortChildrenByEntry(uint32_t mask, const Float* tEntry, int* or
         for (; j > 0 && tEntry[order[j - 1]] > tEntry[k]; --j) order[j] = order[j - 1];
         order[j] = k;
     }
-    return n;
+    for (int j = n - 1; j > 0; --j) push(order[j]);
+    return order[0];
 }
 
 /// Tests primitives [begin, begin + count) of primIndices, updating `hit` (whose t is the current
@@ -122,6 +127,19 @@ CA_HD_INLINE bool intersectLeaf(const BvhView& bvh, const SceneView& scene, uint
     return found;
 }
 
+/// The step of every traversal at item (offset, count). A leaf (count > 0) has its primitives
+/// tested against `best`, setting `found` on a hit, and yields no children; an inner node yields
+/// the mask of its children the ray enters before best.t, with their entry distances in tEntry.
+/// An any-hit traversal stops as soon as `found` is set.
+template <bool AnyHit>
+CA_HD_INLINE uint32_t visitItem(const BvhView& bvh, const SceneView& scene, const Ray& ray,
+                                const TraversalRay& r, uint32_t offset, uint32_t count, Hit& best,
+                                bool& found, Float tEntry[BvhNode::kWidth]) {
+    if (count == 0) return intersectChildren(bvh.nodes[offset], r, best.t, tEntry);
+    if (intersectLeaf<AnyHit>(bvh, scene, offset, count, ray, best)) found = true;
+    return 0;
+}
+
 /// Shared traversal loop. `best.t` holds the search limit on entry and the closest t on exit.
 /// The child being visited is carried in registers as (offset, count), copied from its parent's
 /// slot, so each step costs one dependent memory access: the node of its children.
@@ -138,28 +156,19 @@ CA_HD bool traverse(const BvhView& bvh, const SceneView& scene, const Ray& ray, 
     uint32_t offset = 0, count = 0;  // start at the root node
     bool found = false;
     for (;;) {
-        if (count > 0) {
-            if (intersectLeaf<AnyHit>(bvh, scene, offset, count, ray, best)) {
-                if (AnyHit) return true;
-                found = true;
-            }
-        } else {
+        Float tEntry[BvhNode::kWidth];
+        const uint32_t mask =
+            visitItem<AnyHit>(bvh, scene, ray, r, offset, count, best, found, tEntry);
+        if (AnyHit && found) return true;
+        if (mask != 0) {
             const BvhNode& node = bvh.nodes[offset];
-            Float tEntry[BvhNode::kWidth];
-            uint32_t mask = intersectChildren(node, r, best.t, tEntry);
-            if (mask != 0) {
-                // Children hit, sorted front to back by entry distance (insertion sort of <= 4).
-                int order[BvhNode::kWidth];
-                const int n = sortChildrenByEntry(mask, tEntry, order);
-                // Farther children wait on the stack, the nearest is visited now.
-                for (int j = n - 1; j > 0; --j) {
-                    const int k = order[j];
-                    stack[sp++] = Entry{node.offset[k], node.count[k], tEntry[k]};
-                }
-                offset = node.offset[order[0]];
-                count = node.count[order[0]];
-                continue;
-            }
+            // Farther children wait on the stack, the nearest is visited now.
+            const int k = orderChildren(mask, tEntry, [&](int far) {
+                stack[sp++] = Entry{node.offset[far], node.count[far], tEntry[far]};
+            });
+            offset = node.offset[k];
+            count = node.count[k];
+            continue;
         }
         // Pop the next subtree that may still hold a closer hit.
         for (;;) {
@@ -237,44 +246,34 @@ CA_HD bool traverseShortStack(const BvhView& bvh, const SceneView& scene, const 
     int after = -1;                  // >= 0: node `offset` is re-entered after child slot `after`
     bool found = false;
     for (;;) {
-        if (count > 0) {
-            if (intersectLeaf<AnyHit>(bvh, scene, offset, count, ray, best)) {
-                if (AnyHit) return true;
-                found = true;
-            }
-        } else {
+        Float tEntry[BvhNode::kWidth];
+        uint32_t mask = visitItem<AnyHit>(bvh, scene, ray, r, offset, count, best, found, tEntry);
+        if (AnyHit && found) return true;
+        if (after >= 0) {  // only ever set for an inner node
+            // Re-entered: keep only the children that come after slot `after`.
+            const Float t0 = tEntry[after];
+            for (int k = 0; k < BvhNode::kWidth; ++k)
+                if (!(tEntry[k] > t0 || (tEntry[k] == t0 && k > after))) mask &= ~(1u << k);
+            after = -1;
+        }
+        if (mask != 0) {
             const BvhNode& node = bvh.nodes[offset];
-            Float tEntry[BvhNode::kWidth];
-            uint32_t mask = intersectChildren(node, r, best.t, tEntry);
-            if (after >= 0) {
-                // Re-entered: keep only the children that come after slot `after`.
-                const Float t0 = tEntry[after];
-                for (int k = 0; k < BvhNode::kWidth; ++k)
-                    if (!(tEntry[k] > t0 || (tEntry[k] == t0 && k > after))) mask &= ~(1u << k);
-                after = -1;
-            }
-            if (mask != 0) {
-                int order[BvhNode::kWidth];
-                const int n = sortChildrenByEntry(mask, tEntry, order);
-                for (int j = n - 1; j > 0; --j) {
-                    const int k = order[j];
-                    if constexpr (StackSize > 0) {
-                        stack[top++ % StackSize] = Entry{node.offset[k], node.count[k], tEntry[k],
-                                                         (offset << 2) | uint32_t(k)};
-                        if (held < StackSize)
-                            ++held;
-                        else
-                            lost = true;
-                    } else {
+            const int k = orderChildren(mask, tEntry, [&](int far) {
+                if constexpr (StackSize > 0) {
+                    stack[top++ % StackSize] = Entry{node.offset[far], node.count[far], tEntry[far],
+                                                     (offset << 2) | uint32_t(far)};
+                    if (held < StackSize)
+                        ++held;
+                    else
                         lost = true;
-                    }
+                } else {
+                    lost = true;
                 }
-                link = (offset << 2) | uint32_t(order[0]);
-                const int k = order[0];
-                count = node.count[k];
-                offset = node.offset[k];
-                continue;
-            }
+            });
+            link = (offset << 2) | uint32_t(k);
+            count = node.count[k];
+            offset = node.offset[k];
+            continue;
         }
         // Pop the next subtree that may still hold a closer hit; culled entries count as done.
         bool popped = false;

@@ -41,16 +41,15 @@ public:
         hash_.add(static_cast<const unsigned char*>(p), n);
         out_.write(static_cast<const char*>(p), std::streamsize(n));
     }
-    void u64(uint64_t v) {
-        unsigned char b[8];
-        for (int i = 0; i < 8; ++i) b[i] = static_cast<unsigned char>(v >> (8 * i));
-        bytes(b, 8);
+    /// An unsigned integer, little-endian.
+    template <class T>
+    void uint(T v) {
+        unsigned char b[sizeof(T)];
+        for (size_t i = 0; i < sizeof(T); ++i) b[i] = static_cast<unsigned char>(v >> (8 * i));
+        bytes(b, sizeof(T));
     }
-    void u32(uint32_t v) {
-        unsigned char b[4];
-        for (int i = 0; i < 4; ++i) b[i] = static_cast<unsigned char>(v >> (8 * i));
-        bytes(b, 4);
-    }
+    void u64(uint64_t v) { uint(v); }
+    void u32(uint32_t v) { uint(v); }
     void f32(float v) {
         uint32_t u;
         std::memcpy(&u, &v, 4);
@@ -76,20 +75,17 @@ public:
             throw Error("film checkpoint: truncated data");
         hash_.add(static_cast<const unsigned char*>(p), n);
     }
-    uint64_t u64() {
-        unsigned char b[8];
-        bytes(b, 8);
-        uint64_t v = 0;
-        for (int i = 0; i < 8; ++i) v |= uint64_t(b[i]) << (8 * i);
+    /// An unsigned integer, little-endian.
+    template <class T>
+    T uint() {
+        unsigned char b[sizeof(T)];
+        bytes(b, sizeof(T));
+        T v = 0;
+        for (size_t i = 0; i < sizeof(T); ++i) v |= T(b[i]) << (8 * i);
         return v;
     }
-    uint32_t u32() {
-        unsigned char b[4];
-        bytes(b, 4);
-        uint32_t v = 0;
-        for (int i = 0; i < 4; ++i) v |= uint32_t(b[i]) << (8 * i);
-        return v;
-    }
+    uint64_t u64() { return uint<uint64_t>(); }
+    uint32_t u32() { return uint<uint32_t>(); }
     float f32() {
         uint32_t u = u32();
         float v;

@@ -34,6 +34,22 @@ struct BsdfSample {
 
 namespace bsdf_detail {
 
+/// The PrincipledParams field of a principled BsdfParam (Roughness ... Flatness).
+CA_HD_INLINE Float* principledSlot(PrincipledParams& p, BsdfParam param) {
+    switch (param) {
+        case BsdfParam::Roughness: return &p.roughness;
+        case BsdfParam::Anisotropic: return &p.anisotropic;
+        case BsdfParam::Metallic: return &p.metallic;
+        case BsdfParam::SpecTint: return &p.specTint;
+        case BsdfParam::Sheen: return &p.sheen;
+        case BsdfParam::SheenTint: return &p.sheenTint;
+        case BsdfParam::Clearcoat: return &p.clearcoat;
+        case BsdfParam::ClearcoatGloss: return &p.clearcoatGloss;
+        case BsdfParam::SpecTrans: return &p.specTrans;
+        default: return &p.flatness;  // BsdfParam::Flatness
+    }
+}
+
 /// `b` with its textured parameters (Bsdf::textures) replaced by the textures' values at si.uv:
 /// `b` itself when it has none, else a copy in `storage`.
 CA_HD_INLINE const Bsdf& applyBsdfTextures(const Bsdf& b, const SurfaceInteraction& si,
@@ -50,6 +66,15 @@ CA_HD_INLINE const Bsdf& applyBsdfTextures(const Bsdf& b, const SurfaceInteracti
             case BsdfParam::AlphaU: storage.alphaU = evalTexture1(si.textures, tex, si.uv); break;
             case BsdfParam::AlphaV: storage.alphaV = evalTexture1(si.textures, tex, si.uv); break;
             case BsdfParam::Weight: storage.weight = evalTexture1(si.textures, tex, si.uv); break;
+            case BsdfParam::Eta: storage.eta = evalTexture(si.textures, tex, si.uv); break;
+            case BsdfParam::K: storage.k = evalTexture(si.textures, tex, si.uv); break;
+            case BsdfParam::Roughness: case BsdfParam::Anisotropic: case BsdfParam::Metallic:
+            case BsdfParam::SpecTint: case BsdfParam::Sheen: case BsdfParam::SheenTint:
+            case BsdfParam::Clearcoat: case BsdfParam::ClearcoatGloss: case BsdfParam::SpecTrans:
+            case BsdfParam::Flatness:
+                *principledSlot(storage.principled, b.textures[i].param) =
+                    evalTexture1(si.textures, tex, si.uv);
+                break;
         }
     }
     return storage;

@@ -36,6 +36,19 @@ enum class BsdfParam : uint32_t {
     AlphaU,
     AlphaV,
     Weight,         // blendbsdf weight / mask opacity
+    Eta,            // conductor eta
+    K,              // conductor k
+    // principled weights (PrincipledParams)
+    Roughness,
+    Anisotropic,
+    Metallic,
+    SpecTint,
+    Sheen,
+    SheenTint,
+    Clearcoat,
+    ClearcoatGloss,
+    SpecTrans,
+    Flatness,
 };
 
 /// One textured parameter: `param` takes the value of texture `texture` at si.uv.
@@ -43,7 +56,8 @@ struct BsdfTexture {
     BsdfParam param = BsdfParam::Reflectance;
     uint32_t texture = 0;
 };
-constexpr int kMaxBsdfTextures = 4;
+/// Textured parameters per Bsdf record: principled has the most (base_color and ten weights).
+constexpr int kMaxBsdfTextures = 12;
 
 /// Entries of roughplastic's table of the coating's external transmittance over cosθ.
 constexpr int kRoughPlasticTableSize = 64;

@@ -51,6 +51,25 @@ CA_HD_INLINE void cylinderInteraction(const Cylinder& c, bool flip, SurfaceInter
     si.ng = si.ns = n;
 }
 
+/// Mitsuba's sphere interaction at `si.p` (reprojected onto the surface): with l the hit in object
+/// space (to_object, on the unit sphere), uv = (φ / 2π, θ / π) of l, dp/du = 2π to_world(−l.y,
+/// l.x, 0), dp/dv = π to_world(l.z cosφ, l.z sinφ, −ρ), ρ = sqrt(l.x² + l.y²); dp/dv =
+/// π to_world(1, 0, 0) at the poles (src/shapes/sphere.cpp, compute_surface_interaction).
+CA_HD_INLINE void sphereInteraction(const Sphere& s, bool flip, SurfaceInteraction& si) {
+    Vec3f n = normalize(si.p - s.center);
+    si.p = s.center + n * s.radius;
+    const Vec3f l(dot(n, s.objectX), dot(n, s.objectY), dot(n, s.objectZ));
+    Float phi = std::atan2(l.y, l.x);
+    if (phi < 0) phi += 2 * kPi;
+    si.uv = Vec2f(phi * kInv2Pi, std::acos(clamp(l.z, Float(-1), Float(1))) * kInvPi);
+    const Float rho = std::sqrt(l.x * l.x + l.y * l.y);
+    const Vec3f dv = rho > 0 ? Vec3f(l.z * l.x / rho, l.z * l.y / rho, -rho) : Vec3f(1, 0, 0);
+    si.dpdu = (s.objectY * l.x - s.objectX * l.y) * (2 * kPi * s.radius);
+    si.dpdv = (s.objectX * dv.x + s.objectY * dv.y + s.objectZ * dv.z) * (kPi * s.radius);
+    if (flip) n = -n;
+    si.ng = si.ns = n;
+}
+
 /// Fills the interaction for a valid hit of `ray`.
 CA_HD_INLINE SurfaceInteraction computeInteraction(const SceneView& scene, const Ray& ray, const Hit& hit) {
     SurfaceInteraction si;
@@ -104,19 +123,7 @@ CA_HD_INLINE SurfaceInteraction computeInteraction(const SceneView& scene, const
     } else {
         const Sphere& s = scene.spheres[hit.primId - scene.numTriangles()];
         si.shape = s.shape;
-        Vec3f n = normalize(si.p - s.center);
-        si.p = s.center + n * s.radius;  // reproject onto the surface
-        Float phi = std::atan2(n.y, n.x);
-        if (phi < 0) phi += 2 * kPi;
-        si.uv = Vec2f(phi * kInv2Pi, std::acos(clamp(n.z, Float(-1), Float(1))) * kInvPi);
-        // Mitsuba's sphere: dp/du = 2π r (−y, x, 0), dp/dv = π r (z cosφ, z sinφ, −ρ) for the
-        // local unit-sphere point (x, y, z), ρ = sqrt(x² + y²) (dp/dv = (1, 0, 0) at the poles).
-        const Float rho = std::sqrt(n.x * n.x + n.y * n.y);
-        si.dpdu = Vec3f(-n.y, n.x, 0) * (2 * kPi * s.radius);
-        si.dpdv = rho > 0 ? Vec3f(n.z * n.x / rho, n.z * n.y / rho, -rho) * (kPi * s.radius)
-                          : Vec3f(1, 0, 0) * (kPi * s.radius);
-        if (scene.shapes[s.shape].flipNormals) n = -n;
-        si.ng = si.ns = n;
+        sphereInteraction(s, scene.shapes[s.shape].flipNormals, si);
     }
     return si;
 }

@@ -116,7 +116,7 @@ CA_HD_INLINE bool sampleLight(const SceneView& scene, Vec3f refP, Float uSelect,
             out.p = light.position;
             out.dist = std::sqrt(d2);
             out.wi = d * (1 / out.dist);
-            out.Le = spotIntensity(light, -out.wi) * (1 / d2);
+            out.Le = spotIntensity(light, scene.textureView(), -out.wi) * (1 / d2);
             out.pdf = selPdf;
             out.delta = true;
             return !out.Le.isBlack();

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 
+#include "caustica/scene/texture.h"
 #include "caustica/util/spectrum.h"
 
 namespace caustica {
@@ -33,6 +34,8 @@ struct Light {
     Vec3f worldFromLocal[3];  // envmap: rows of to_world's linear part
     Vec3f direction;          // directional: unit direction the light travels
     Float cosCutoff = 0, cosBeam = 1, cutoff = 0, invTransition = 0;  // spot (radians)
+    uint32_t texture = kNoTexture;  // spot: `texture` (SceneView::textures), or none
+    Float uvFactor = 0;             // spot: tan(cutoff), maps directions to the texture's uv
     uint32_t texOffset = 0;   // envmap: texels SceneView::lightTexels[texOffset, + w * h),
     uint32_t texWidth = 0, texHeight = 0;  // row-major from the top row; its sampling CDFs
                               // are SceneView::lightCdf[cdfOffset, cdfOffset + cdfCount)

@@ -3,12 +3,15 @@
 //
 //   spot         intensity I at `position`, shining along to_world's +z. Mitsuba 3's falloff
 //                (src/emitters/spot.cpp): 1 inside beam_width, then linear in the angle θ
-//                down to 0 at cutoff_angle: (cutoff − θ) / (cutoff − beam_width).
+//                down to 0 at cutoff_angle: (cutoff − θ) / (cutoff − beam_width); times an
+//                optional texture at uv = 0.5 + 0.5 (x, y) / (z tan(cutoff)) of the local
+//                direction (Mitsuba's direction_to_uv).
 //   directional  irradiance E arriving along `direction` from outside the scene's bounding
 //                sphere (src/emitters/directional.cpp); the shadow ray is unbounded.
 #pragma once
 
 #include "caustica/scene/light_data.h"
+#include "caustica/scene/texture.h"
 #include "caustica/util/math.h"
 
 namespace caustica {
@@ -30,8 +33,13 @@ CA_HD_INLINE Float spotFalloff(const Light& light, Vec3f local) {
 }
 
 /// Intensity the spot sends from its position towards world direction `w` (unit, away from it).
-CA_HD_INLINE Spectrum spotIntensity(const Light& light, Vec3f w) {
-    return light.radiance * spotFalloff(light, applyRows(light.localFromWorld, w));
+CA_HD_INLINE Spectrum spotIntensity(const Light& light, const TextureView& textures, Vec3f w) {
+    const Vec3f local = applyRows(light.localFromWorld, w);
+    const Float falloff = spotFalloff(light, local);
+    if (light.texture == kNoTexture || !(falloff > 0)) return light.radiance * falloff;
+    const Float zf = local.z * light.uvFactor;
+    const Vec2f uv(Float(0.5) + Float(0.5) * local.x / zf, Float(0.5) + Float(0.5) * local.y / zf);
+    return light.radiance * evalTexture(textures, light.texture, uv) * falloff;
 }
 
 }  // namespace caustica

@@ -77,6 +77,7 @@ struct IntegratorDesc {
     uint64_t mltBootstrapSamples = 0;        // 0: the renderer's default
     Float mltLargeStepProbability = 0.1f;
     uint32_t mltProposals = 1;               // split-transition proposals per step
+    bool mltRelativeTarget = true;           // target luminance / pixel brightness (mlt_target.h)
     int emitterSamples = 1;     // direct: light samples per camera sample (emitter_samples)
     int bsdfSamples = 1;        // direct: BSDF samples per camera sample (bsdf_samples)
 };

@@ -23,11 +23,15 @@ struct Shape {
     bool flipNormals = false;   // Mitsuba's flip_normals: the surface's outside is the other side
 };
 
-/// An analytic sphere (Mitsuba's sphere shape). Normals point outwards unless the shape flips them.
+/// An analytic sphere (Mitsuba's sphere shape), world space. uv and dp/du, dp/dv are Mitsuba's,
+/// taken in object space: the object axes' world directions `objectX/Y/Z` are to_world's linear
+/// part divided by the radius (orthonormal; a left-handed triple when to_world mirrors). Normals
+/// point outwards unless the shape flips them.
 struct Sphere {
     Vec3f center;
     Float radius = 1;
     uint32_t shape = 0;  // index into SceneView::shapes
+    Vec3f objectX{1, 0, 0}, objectY{0, 1, 0}, objectZ{0, 0, 1};
 };
 
 /// An analytic open cylinder (Mitsuba's cylinder: no caps), world space: the points at distance

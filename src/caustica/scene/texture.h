@@ -14,6 +14,9 @@
 //   so BSDF code only ever reads the plain fields. Loaders: `readSpectrumParam` /
 //   `readFloatParam` in io/mitsuba/build_textures.h. A new textured field = one `BsdfParam`
 //   value and one case in applyBsdfTextures.
+// - A checkerboard's colours may be textures themselves (`child0` / `child1`); they are
+//   evaluated at the original uv (Mitsuba passes the unchanged interaction down), so nesting is
+//   a loop, not recursion. Children always have smaller ids than their parent (built first).
 // Evaluation is deterministic and cheap: no allocation, at most four texel fetches.
 #pragma once
 
@@ -41,6 +44,8 @@ struct Texture {
     TextureType type = TextureType::Constant;
     Spectrum value{0.0f};      // constant value; checkerboard color0
     Spectrum value1{0.0f};     // checkerboard color1
+    // checkerboard: color0 / color1 given as textures (else kNoTexture and value / value1)
+    uint32_t child0 = kNoTexture, child1 = kNoTexture;
     uint32_t texelOffset = 0;  // bitmap: first texel in Scene::texels
     int32_t width = 0, height = 0;
     TextureFilter filter = TextureFilter::Bilinear;
@@ -109,39 +114,71 @@ CA_HD_INLINE BilinearFetch fetchBilinear(const TextureView& v, const Texture& t,
     return f;
 }
 
+/// Mitsuba's checkerboard cell test: true where color0 applies (frac(u) > .5 equals frac(v) > .5).
+CA_HD_INLINE bool checkerColor0(const Texture& t, Vec2f uvIn) {
+    const Vec2f uv = applyToUv(t, uvIn);
+    return (uv.x - std::floor(uv.x) > Float(0.5)) == (uv.y - std::floor(uv.y) > Float(0.5));
+}
+
+/// Mitsuba's bitmap eval: the nearest texel or the bilinear interpolation at to_uv(uv).
+CA_HD_INLINE Spectrum evalBitmap(const TextureView& v, const Texture& t, Vec2f uvIn) {
+    const Vec2f uv = applyToUv(t, uvIn);
+    if (t.filter == TextureFilter::Nearest)
+        return texel(v, t, floorToInt(uv.x * Float(t.width)), floorToInt(uv.y * Float(t.height)));
+    const BilinearFetch f = fetchBilinear(v, t, uv);
+    const Spectrum f0 = f.f00 * (1 - f.wx) + f.f10 * f.wx;
+    const Spectrum f1 = f.f01 * (1 - f.wx) + f.f11 * f.wx;
+    return f0 * (1 - f.wy) + f1 * f.wy;
+}
+
 }  // namespace texture_detail
 
 /// Mitsuba's Texture::eval at uv.
-CA_HD_INLINE Spectrum evalTexture(const TextureView& v, uint32_t id, Vec2f uvIn) {
+CA_HD_INLINE Spectrum evalTexture(const TextureView& v, uint32_t id, Vec2f uv) {
     using namespace texture_detail;
-    const Texture& t = v.textures[id];
-    switch (t.type) {
-        case TextureType::Constant:
-            return t.value;
-        case TextureType::Checkerboard: {
-            const Vec2f uv = applyToUv(t, uvIn);
-            const bool mx = uv.x - std::floor(uv.x) > Float(0.5);
-            const bool my = uv.y - std::floor(uv.y) > Float(0.5);
-            return mx == my ? t.value : t.value1;
-        }
-        case TextureType::Bitmap: {
-            const Vec2f uv = applyToUv(t, uvIn);
-            if (t.filter == TextureFilter::Nearest)
-                return texel(v, t, floorToInt(uv.x * Float(t.width)),
-                             floorToInt(uv.y * Float(t.height)));
-            const BilinearFetch f = fetchBilinear(v, t, uv);
-            const Spectrum f0 = f.f00 * (1 - f.wx) + f.f10 * f.wx;
-            const Spectrum f1 = f.f01 * (1 - f.wx) + f.f11 * f.wx;
-            return f0 * (1 - f.wy) + f1 * f.wy;
+    for (;;) {  // descends through nested checkerboards (child ids decrease: terminates)
+        const Texture& t = v.textures[id];
+        switch (t.type) {
+            case TextureType::Constant:
+                return t.value;
+            case TextureType::Bitmap:
+                return evalBitmap(v, t, uv);
+            case TextureType::Checkerboard: {
+                const bool c0 = checkerColor0(t, uv);
+                const uint32_t child = c0 ? t.child0 : t.child1;
+                if (child == kNoTexture) return c0 ? t.value : t.value1;
+                id = child;
+                break;
+            }
+            default:
+                return {};
         }
     }
-    return {};
 }
 
-/// Mitsuba's Texture::eval_1: the luminance of the texture's colour (grey texels return their
-/// value).
+/// Mitsuba 3.9.1's Texture::eval_1: a bitmap's (or rawconstant's) luminance; a colour value's
+/// mean (Mitsuba's srgb texture); a checkerboard's eval_1 takes color0 where eval takes color1
+/// and vice versa (its eval_1 tests `mask.x != mask.y`; checked with Mitsuba's Python bindings).
 CA_HD_INLINE Float evalTexture1(const TextureView& v, uint32_t id, Vec2f uv) {
-    return evalTexture(v, id, uv).luminance();
+    using namespace texture_detail;
+    for (;;) {
+        const Texture& t = v.textures[id];
+        switch (t.type) {
+            case TextureType::Constant:
+                return t.value.luminance();
+            case TextureType::Bitmap:
+                return evalBitmap(v, t, uv).luminance();
+            case TextureType::Checkerboard: {
+                const bool c0 = !checkerColor0(t, uv);
+                const uint32_t child = c0 ? t.child0 : t.child1;
+                if (child == kNoTexture) return (c0 ? t.value : t.value1).average();
+                id = child;
+                break;
+            }
+            default:
+                return 0;
+        }
+    }
 }
 
 /// Mitsuba's bitmap eval_1_grad: the gradient of the bilinearly interpolated luminance with

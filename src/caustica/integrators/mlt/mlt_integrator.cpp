@@ -36,6 +36,10 @@ uint32_t mltStoredBounces(const PathSettings& settings) {
     return std::min<uint32_t>(uint32_t(std::max(settings.maxDepth - 1, 0)), kMltMaxStoredBounces);
 }
 
+uint64_t mltDefaultBootstrapSamples(uint32_t chains, uint64_t pixels) {
+    return std::max<uint64_t>(uint64_t(4) * chains, std::min<uint64_t>(16 * pixels, uint64_t(1) << 20));
+}
+
 size_t mltBytesPerChain(MltStateKind kind, uint32_t storedBounces) {
     const size_t samples = kind == MltStateKind::Compact ? CompactChainStore::bytesPerDims(storedBounces)
                                                          : FloatChainStore::bytesPerDims(storedBounces);
@@ -144,22 +148,30 @@ public:
         const auto t0 = Clock::now();
         const uint32_t n = settings.chains;
         const uint64_t m = settings.bootstrapSamples > 0 ? settings.bootstrapSamples
-                                                         : std::max<uint64_t>(uint64_t(4) * n, uint64_t(1) << 18);
+                                                         : mltDefaultBootstrapSamples(n, pixels_);
         Buffer<float> importance(device_, m);
+        Buffer<uint32_t> pixelOf(device_, m), rays(device_, m);
         Span<float> I = importance.span();
-        std::vector<uint32_t> rays(m);
-        const MltStepParams p = params_;
+        uint32_t* pixel = pixelOf.data();
+        uint32_t* r = rays.data();
+        MltStepParams p = params_;
         accel_.visit([&](const auto& intersector) {
             parallelFor(device_, "mlt.bootstrap", m, [&](size_t i) {
-                uint32_t r = 0;
-                I[i] = bootstrapImportance<Store>(scene_.view(), intersector, p, i, r);
-                rays[i] = r;
+                r[i] = 0;
+                I[i] = bootstrapImportance<Store>(scene_.view(), intersector, p, i, r[i], pixel[i]);
             }, 64);
         });
+        stats.rays += std::accumulate(r, r + m, uint64_t(0));
+        if (settings.target == MltTarget::Relative) {
+            // The samples above are luminances; weigh them by the pixel weights they define.
+            pixelWeight_ = mltRelativePixelWeights(I.data(), pixel, m, params_.width, params_.height);
+            params_.pixelWeight = pixelWeight_.data();
+            p.pixelWeight = params_.pixelWeight;
+            parallelFor(device_, "mlt.bootstrap_target", m, [&](size_t i) { I[i] *= pixelWeight_[pixel[i]]; }, 4096);
+        }
         // b = E[I]: the bootstrap mean (refined later by the large steps).
         const double sum = reduceSum(device_, asConst(I));
         stats.bootstrapSamples = m;
-        stats.rays += std::accumulate(rays.begin(), rays.end(), uint64_t(0));
         bSum_ = sum;
         bCount_ = double(m);
         stats.b = sum / double(m);
@@ -200,6 +212,7 @@ public:
         const uint32_t n = settings.chains, k = settings.proposals;
         MltStepParams p = params_;
         p.iteration = uint32_t(stats.iterations);
+        p.b = float(stats.b);
         const MltChainView<Store> v = view();
 
         auto t = Clock::now();
@@ -246,7 +259,7 @@ public:
         const double totalWeight = double(settings.chains) * settings.proposals * double(stats.iterations);
         if (totalWeight == 0) return out;
         const double integral = filter_.integral();
-        const double scale = stats.b * double(pixels_) / totalWeight / (integral * integral);
+        const double scale = double(pixels_) / totalWeight / (integral * integral);
         const double* img = image_.data();
         for (int y = 0; y < params_.height; ++y)
             for (int x = 0; x < params_.width; ++x) {
@@ -401,6 +414,7 @@ private:
     Buffer<MltSplat> splats_;
     Buffer<double> image_;
     double bSum_ = 0, bCount_ = 0;
+    std::vector<float> pixelWeight_;  // relative target only (params_.pixelWeight points here)
 };
 
 }  // namespace

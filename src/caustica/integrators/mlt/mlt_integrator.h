@@ -15,6 +15,7 @@
 #include "caustica/accel/accel.h"
 #include "caustica/film/image.h"
 #include "caustica/integrators/mlt/mlt_state.h"
+#include "caustica/integrators/mlt/mlt_target.h"
 #include "caustica/integrators/path/path_kernel.h"
 #include "caustica/scene/scene.h"
 
@@ -28,9 +29,17 @@ MltStateKind parseMltStateKind(const std::string& name);  // "compact" | "float"
 MltSplatKind parseMltSplatKind(const std::string& name);  // "atomic" | "sort"
 MltStart parseMltStart(const std::string& name);          // "bootstrap" | "uniform"
 
+/// Default chain count. On a CPU few long chains beat many short ones at equal time: a chain's
+/// error is dominated by its first steps and by chains started at the same bootstrap sample
+/// (docs/PERFORMANCE.md); a GPU wants more to fill its threads.
+inline constexpr uint32_t kMltDefaultChains = 1024;
+/// Default bootstrap size M: 16 per pixel (what the relative target's brightness map needs, with
+/// blurring), at most 2^20, and at least 4 per chain.
+uint64_t mltDefaultBootstrapSamples(uint32_t chains, uint64_t pixels);
+
 struct MltSettings {
-    uint32_t chains = 1u << 16;           // chains stepped in lock step
-    uint64_t bootstrapSamples = 0;        // M ordinary Monte Carlo samples; 0 = max(4 chains, 2^18)
+    uint32_t chains = kMltDefaultChains;  // chains stepped in lock step
+    uint64_t bootstrapSamples = 0;        // M ordinary Monte Carlo samples; 0 = mltDefaultBootstrapSamples
     Float largeStepProbability = 0.1f;
     MltMutation mutation;                 // small-step sizes s1, s2
     uint32_t proposals = 1;               // k proposals per step (split transitions)
@@ -38,6 +47,7 @@ struct MltSettings {
     MltSplatKind splat = MltSplatKind::Atomic;
     uint32_t sortEvery = 0;               // Morton-sort the chains every N iterations; 0 = never
     MltStart start = MltStart::Bootstrap;
+    MltTarget target = MltTarget::Relative;  // what the chains sample in proportion to (mlt_target.h)
 };
 
 /// Bounces whose primary samples a chain stores: max_depth - 1 when bounded (the last segment
@@ -73,7 +83,7 @@ public:
     void bootstrap();
     /// One iteration of every chain. Returns the rays traced.
     uint64_t iterate();
-    /// The image so far: splat sums scaled by b * pixels / total splat weight, divided by the
+    /// The image so far: splat sums scaled by pixels / total chain splat weight, divided by the
     /// filter's integral (and its coverage at the image border).
     Image develop() const;
     /// Proposals per pixel so far (the analogue of samples per pixel).

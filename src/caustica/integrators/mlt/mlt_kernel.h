@@ -9,11 +9,16 @@
 //                  state x on the fly (small step, or large step with probability pLarge) and
 //                  runs the unchanged path tracer on it;
 //   advanceChain   (one work item per chain) computes a_j = min(1, I(y_j) / I(x)), splats y_j with
-//                  weight a_j and x with k - sum(a_j) (each as F / I), draws the next state in
-//                  proportion to (k - sum a_j, a_1 ... a_k), and on a move rewrites the stored
-//                  state from the accepted proposal's stream.
-// A splat of weight w contributes w F / I; the driver scales the image by b * pixels / (total
-// weight), b = E[I] (estimated by the bootstrap and the large steps).
+//                  weight a_j and x with k - sum(a_j), draws the next state in proportion to
+//                  (k - sum a_j, a_1 ... a_k), and on a move rewrites the stored state from the
+//                  accepted proposal's stream.
+// Splats combine the chains with the large steps by the balance heuristic (Kelemen et al. 2002,
+// sec. 5): a large-step proposal is also an ordinary Monte Carlo sample (density 1 in primary
+// sample space, k pLarge of them per chain and iteration on average), the chain's expected-value
+// splats have density I / b (k per chain and iteration), so a point x splatted with chain weight w
+// contributes (w + [x is a large-step proposal]) F(x) / (I(x) / b + pLarge); the driver divides
+// by k x chains x iterations. With pLarge = 0 this is plain MLT (w b F / I); where I is small the
+// large steps' path-tracing estimate takes over, which keeps dark pixels from starving.
 #pragma once
 
 #include <cstdint>
@@ -31,6 +36,11 @@ struct MltStepParams {
     uint32_t iteration = 0;
     uint32_t proposals = 1;            // k
     Float largeStepProbability = 0.1f;
+    float b = 1;                       // current estimate of E[I], for the splat weights
+    // Target I = luminance(F) x pixelWeight[pixel] when set (relative target: the inverse of a
+    // smoothed estimate of the pixel's brightness, so every pixel draws about equal effort);
+    // plain luminance when null.
+    const float* pixelWeight = nullptr;
     MltMutation mutation;
     PathSettings path;
     int width = 0, height = 0;
@@ -69,7 +79,16 @@ CA_HD_INLINE bool mltIsLargeStep(uint64_t key, Float largeStepProbability) {
     return uniformFloat(mix64(key ^ 0xd1b54a32d192ed03ull)) < largeStepProbability;
 }
 
-CA_HD_INLINE float mltImportance(const Spectrum& v) { return float(v.luminance()); }
+/// Pixel index of a film position (clamped to the image).
+CA_HD_INLINE uint32_t mltPixelOf(Vec2f pos, int width, int height) {
+    const int x = min(max(int(pos.x), 0), width - 1), y = min(max(int(pos.y), 0), height - 1);
+    return uint32_t(y) * uint32_t(width) + uint32_t(x);
+}
+/// The target function I of a path with value F through film position pos.
+CA_HD_INLINE float mltImportance(const Spectrum& F, Vec2f pos, const MltStepParams& p) {
+    const float lum = float(F.luminance());
+    return p.pixelWeight ? lum * p.pixelWeight[mltPixelOf(pos, p.width, p.height)] : lum;
+}
 
 /// Runs the path tracer on the primary samples `sampler` produces: the film position from the
 /// first two, the lens position from the next two, the path from the rest. Invalid radiance (NaN, Inf, negative) counts as zero.
@@ -98,8 +117,14 @@ CA_HD void traceProposal(const SceneView& scene, const Intersector& accel, const
     v.proposalDims[item] = uint16_t(min(sampler.dimension(), v.store.dims));
     v.proposalPos[item] = pos;
     v.proposalValue[item] = F;
-    v.proposalImportance[item] = mltImportance(F);
+    v.proposalImportance[item] = mltImportance(F, pos, p);
     v.proposalRays[item] = rays;
+}
+
+/// What a point with value F, importance I and combined weight w splats (see the header).
+CA_HD_INLINE Spectrum mltSplatValue(const Spectrum& F, float I, float w, const MltStepParams& p) {
+    const float density = I / p.b + float(p.largeStepProbability);
+    return density > 0 && w > 0 ? F * (w / density) : Spectrum(0);
 }
 
 /// advanceChain for one chain: splats, selection of the next state, state update.
@@ -114,17 +139,19 @@ CA_HD void advanceChain(const MltChainView<Store>& v, const MltStepParams& p, ui
         const uint32_t item = chain * k + j;
         const float Iy = v.proposalImportance[item];
         const uint64_t key = mltProposalKey(p.seed, chain, p.iteration, j);
-        if (mltIsLargeStep(key, p.largeStepProbability)) {
+        const bool large = mltIsLargeStep(key, p.largeStepProbability);
+        if (large) {
             largeSum += Iy;
             ++largeCount;
         }
         // A chain started where I = 0 (uniform start only) accepts any proposal.
         const float a = Ix > 0 ? min(1.0f, Iy / Ix) : 1.0f;
         sumA += a;
-        splats[1 + j] = MltSplat{v.proposalPos[item], Iy > 0 ? v.proposalValue[item] * (a / Iy) : Spectrum(0)};
+        splats[1 + j] = MltSplat{v.proposalPos[item],
+                                 mltSplatValue(v.proposalValue[item], Iy, a + (large ? 1.0f : 0.0f), p)};
     }
     const float stay = max(0.0f, float(k) - sumA);
-    splats[0] = MltSplat{v.pos[chain], Ix > 0 ? v.value[chain] * (stay / Ix) : Spectrum(0)};
+    splats[0] = MltSplat{v.pos[chain], mltSplatValue(v.value[chain], Ix, stay, p)};
     v.largeStepSum[chain] = largeSum;
     v.largeSteps[chain] = largeCount;
 
@@ -159,13 +186,16 @@ CA_HD void advanceChain(const MltChainView<Store>& v, const MltStepParams& p, ui
     v.importance[chain] = v.proposalImportance[item];
 }
 
-/// Bootstrap sample i (an ordinary Monte Carlo path from fresh primary samples): its importance.
+/// Bootstrap sample i (an ordinary Monte Carlo path from fresh primary samples): its importance
+/// under p's target, and the pixel it falls in.
 template <class Store, class Intersector>
 CA_HD float bootstrapImportance(const SceneView& scene, const Intersector& accel, const MltStepParams& p,
-                                uint64_t i, uint32_t& rays) {
+                                uint64_t i, uint32_t& rays, uint32_t& pixel) {
     MltProposalSampler<Store> sampler(nullptr, 0, 0, mltBootstrapKey(p.seed, i), true, p.mutation);
     Vec2f pos;
-    return mltImportance(evaluatePrimarySample(scene, accel, sampler, p.path, p.width, p.height, pos, rays));
+    const Spectrum F = evaluatePrimarySample(scene, accel, sampler, p.path, p.width, p.height, pos, rays);
+    pixel = mltPixelOf(pos, p.width, p.height);
+    return mltImportance(F, pos, p);
 }
 
 /// Starts `chain` at bootstrap sample i: stores its primary samples and re-traces it for F.
@@ -180,7 +210,7 @@ CA_HD void startChain(const SceneView& scene, const Intersector& accel, const Ml
     v.usedDims[chain] = uint16_t(used);
     v.pos[chain] = pos;
     v.value[chain] = F;
-    v.importance[chain] = mltImportance(F);
+    v.importance[chain] = mltImportance(F, pos, p);
 }
 
 /// Morton key of a chain's state for coherence sorting: film x, film y and the first bounce's

@@ -18,7 +18,8 @@
 // | twosided       | one nested/referenced bsdf (both sides) or two (front, back)              |
 // | bumpmap        | a nested texture (height field), a nested bsdf, scale (1)                 |
 // | normalmap      | a nested texture named normalmap, a nested bsdf                           |
-// Colour parameters and alpha / alpha_u / alpha_v may be textures (build_textures.h).
+// Colour parameters, conductor eta / k and alpha / alpha_u / alpha_v may be textures
+// (build_textures.h).
 // roughplastic, blendbsdf, mask, null, principled: build_bsdfs_layered.cpp.
 #include <algorithm>
 #include <cctype>
@@ -79,15 +80,15 @@ const NamedConductor kConductorTable[] = {
 #include "caustica/io/mitsuba/conductor_table.inc"
 };
 
-/// Complex index of refraction of the conductors: eta (0) and k (1), or a material name
-/// (Mitsuba's default "none": eta 0, k 1). Names are case-sensitive, as in Mitsuba.
-void readConductorIor(const Params& p, Bsdf& b) {
-    if (p.has("eta") || p.has("k")) {
+/// Complex index of refraction of the conductors: eta (0) and k (1), values or textures, or a
+/// material name (Mitsuba's default "none": eta 0, k 1). Names are case-sensitive, as in Mitsuba.
+void readConductorIor(BuildContext& ctx, Params& p, Bsdf& b) {
+    if (hasParam(p, "eta") || hasParam(p, "k")) {
         if (p.getString("material", "none") != "none")
             p.fail(*p.find("material"),
                    "cannot be combined with 'eta'/'k' (give one or the other)");
-        b.eta = p.getSpectrum("eta", Spectrum(0.0f));
-        b.k = p.getSpectrum("k", Spectrum(1.0f));
+        b.eta = readSpectrumParam(ctx, p, "eta", Spectrum(0.0f), b, BsdfParam::Eta);
+        b.k = readSpectrumParam(ctx, p, "k", Spectrum(1.0f), b, BsdfParam::K);
         return;
     }
     const std::string material = p.getString("material", "none");
@@ -173,7 +174,7 @@ Bsdf thinDielectric(BuildContext& ctx, Params& p) {
 Bsdf conductor(BuildContext& ctx, Params& p) {
     Bsdf b;
     b.type = BsdfType::Conductor;
-    readConductorIor(p, b);
+    readConductorIor(ctx, p, b);
     b.reflectance = readSpectrumParam(ctx, p, "specular_reflectance", Spectrum(1.0f), b,
                                       BsdfParam::Reflectance);
     return b;
@@ -183,7 +184,7 @@ Bsdf roughConductor(BuildContext& ctx, Params& p) {
     Bsdf b;
     b.type = BsdfType::RoughConductor;
     readRoughness(ctx, p, b);
-    readConductorIor(p, b);
+    readConductorIor(ctx, p, b);
     b.reflectance = readSpectrumParam(ctx, p, "specular_reflectance", Spectrum(1.0f), b,
                                       BsdfParam::Reflectance);
     return b;

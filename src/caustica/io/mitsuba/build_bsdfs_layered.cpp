@@ -9,12 +9,14 @@
 // |              | clamped to [0, 1]), two nested/referenced bsdfs (bsdf_0 at 0, bsdf_1 at 1)  |
 // | mask         | opacity (0.5; float, rgb (its mean) or texture; clamped to [0, 1]), one     |
 // |              | nested bsdf                                                                 |
-// Colour parameters of roughplastic may be textures (build_textures.h).
+// Colour parameters of roughplastic may be textures (build_textures.h); its alpha may not (Mitsuba
+// 3.9.1 reads it as a float: its tables are precomputed for one roughness).
 // | null         | (none)                                                                      |
 // | principled   | base_color (0.5; may be a texture), roughness (0.5), metallic, specular     |
 // |              | (0.5) or eta, spec_tint, anisotropic, sheen, sheen_tint, clearcoat,         |
 // |              | clearcoat_gloss, spec_trans, flatness (0), the three sampling rates (1).    |
-// |              | Weights must lie in [0, 1]; only base_color may be textured.                |
+// |              | Values must lie in [0, 1]; base_color and every weight but the sampling     |
+// |              | rates may be textures (specular and eta are floats in Mitsuba 3.9.1).       |
 // Nested trees must fit the kernels' bounds (bsdf_composite.h, kMaxBsdfTreeLeaves/Depth).
 #include "caustica/io/mitsuba/build_bsdfs_layered.h"
 
@@ -84,7 +86,8 @@ Bsdf buildRoughPlastic(BuildContext& ctx, Params& p) {
                                                 tex, BsdfParam::Reflectance);
     Bsdf b = makeRoughPlastic(r.distribution, r.alphaU, intIor / extIor, diffuse, specular,
                               p.getBool("nonlinear", false));
-    if (r.numTextures > 0) p.fail("a textured roughness is not supported by roughplastic");
+    if (r.numTextures > 0)
+        p.fail("'alpha' must be a float for roughplastic (Mitsuba 3.9.1 refuses a texture too)");
     for (uint32_t i = 0; i < tex.numTextures; ++i) b.textures[i] = tex.textures[i];
     b.numTextures = tex.numTextures;
     return b;
@@ -135,11 +138,18 @@ bool lobeFlag(const Params& p, const std::string& name) {
              prop->number == 0);
 }
 
-/// A principled weight in [0, 1] (Mitsuba's documented range; other values are refused).
+/// A principled float in [0, 1] (Mitsuba's documented range; other values are refused).
 Float unitParam(const Params& p, const std::string& name, Float def) {
     const Float v = p.getFloat(name, def);
     if (v < 0 || v > 1) p.fail(*p.find(name), "must lie in [0, 1]");
     return v;
+}
+
+/// A principled weight: a float in [0, 1] or a texture (evaluated with eval_1 in the kernels).
+Float weightParam(BuildContext& ctx, Params& p, const std::string& name, Float def, Bsdf& b,
+                  BsdfParam param) {
+    if (findTextureChild(p, name) >= 0) return readFloatParam(ctx, p, name, def, b, param);
+    return unitParam(p, name, def);
 }
 
 }  // namespace
@@ -158,16 +168,16 @@ Bsdf buildPrincipled(BuildContext& ctx, Params& p) {
     q.hasSpecTint = lobeFlag(p, "spec_tint");
     q.hasMetallic = lobeFlag(p, "metallic");
     q.hasClearcoat = lobeFlag(p, "clearcoat");
-    q.roughness = unitParam(p, "roughness", 0.5f);
-    q.anisotropic = unitParam(p, "anisotropic", 0);
-    q.specTrans = unitParam(p, "spec_trans", 0);
-    q.sheen = unitParam(p, "sheen", 0);
-    q.sheenTint = unitParam(p, "sheen_tint", 0);
-    q.flatness = unitParam(p, "flatness", 0);
-    q.specTint = unitParam(p, "spec_tint", 0);
-    q.metallic = unitParam(p, "metallic", 0);
-    q.clearcoat = unitParam(p, "clearcoat", 0);
-    q.clearcoatGloss = unitParam(p, "clearcoat_gloss", 0);
+    q.roughness = weightParam(ctx, p, "roughness", 0.5f, b, BsdfParam::Roughness);
+    q.anisotropic = weightParam(ctx, p, "anisotropic", 0, b, BsdfParam::Anisotropic);
+    q.specTrans = weightParam(ctx, p, "spec_trans", 0, b, BsdfParam::SpecTrans);
+    q.sheen = weightParam(ctx, p, "sheen", 0, b, BsdfParam::Sheen);
+    q.sheenTint = weightParam(ctx, p, "sheen_tint", 0, b, BsdfParam::SheenTint);
+    q.flatness = weightParam(ctx, p, "flatness", 0, b, BsdfParam::Flatness);
+    q.specTint = weightParam(ctx, p, "spec_tint", 0, b, BsdfParam::SpecTint);
+    q.metallic = weightParam(ctx, p, "metallic", 0, b, BsdfParam::Metallic);
+    q.clearcoat = weightParam(ctx, p, "clearcoat", 0, b, BsdfParam::Clearcoat);
+    q.clearcoatGloss = weightParam(ctx, p, "clearcoat_gloss", 0, b, BsdfParam::ClearcoatGloss);
     q.specRate = p.getFloat("main_specular_sampling_rate", 1);
     q.clearcoatRate = p.getFloat("clearcoat_sampling_rate", 1);
     q.diffuseRate = p.getFloat("diffuse_reflectance_sampling_rate", 1);

@@ -5,13 +5,15 @@
 // | area     | radiance (1); only inside (or referenced by) a shape                  |
 // | point    | intensity (1), position (0, 0, 0) or to_world (not both)              |
 // | constant | radiance (1); at most one environment (constant or envmap) per scene   |
-// | spot     | intensity (1), cutoff_angle (20), beam_width (3/4 cutoff), to_world       |
+// | spot     | intensity (1), cutoff_angle (20), beam_width (3/4 cutoff), to_world,      |
+// |          | texture (none; a spatially varying texture over the cone)             |
 // | directional | irradiance (1), direction (0, 0, 1) or to_world (not both)             |
 // | envmap   | filename (.exr, .hdr, .pfm, .png), scale (1), to_world; one environment   |
 #include <cmath>
 
 #include "caustica/io/image_io.h"
 #include "caustica/io/mitsuba/build_context.h"
+#include "caustica/io/mitsuba/build_textures.h"
 #include "caustica/io/mitsuba/plugin_table.h"
 #include "caustica/util/error.h"
 
@@ -90,7 +92,16 @@ Light spotEmitter(EmitterArgs& a) {
     const Transform t = p.getTransform("to_world");
     l.position = t.applyPoint(Vec3f(0));
     linearRows(t, true, l.localFromWorld);
-    p.refuse("texture", "(textured spot lights) is not supported yet");
+    l.uvFactor = Float(std::tan(Float(cutoff * deg)));
+    if (const int tex = findTextureChild(p, "texture"); tex >= 0) {
+        p.takeChildren("texture");
+        l.texture = buildTexture(a.ctx, tex);
+        if (a.ctx.scene.textures[l.texture].type == TextureType::Constant)
+            p.failAtChild(tex, "'texture' must be spatially varying, e.g. a bitmap (as Mitsuba 3)");
+    } else if (p.has("texture")) {
+        p.fail(*p.find("texture"),
+               "must be a spatially varying texture, e.g. a bitmap (as Mitsuba 3)");
+    }
     return l;
 }
 

@@ -54,8 +54,8 @@ IntegratorDesc directIntegrator(Params& p) {
 }
 
 /// caustica's Metropolis light transport (mlt; Mitsuba 0.6's pssmlt reads the same): the path
-/// parameters plus chains, luminance_samples (bootstrap), p_large (Mitsuba 0.6's pLarge) and
-/// proposals.
+/// parameters plus chains, luminance_samples (bootstrap), p_large (Mitsuba 0.6's pLarge),
+/// proposals and target (luminance | relative).
 IntegratorDesc mltIntegrator(Params& p) {
     IntegratorDesc d = pathIntegrator(p);
     d.type = IntegratorType::Mlt;
@@ -71,6 +71,10 @@ IntegratorDesc mltIntegrator(Params& p) {
     const int k = p.getInt("proposals", 1);
     if (k < 1 || k > 64) p.fail(*p.find("proposals"), "must be in 1..64");
     d.mltProposals = uint32_t(k);
+    const std::string target = p.getString("target", "relative");
+    if (target != "luminance" && target != "relative")
+        p.fail(*p.find("target"), "must be luminance or relative, not '" + target + "'");
+    d.mltRelativeTarget = target == "relative";
     return d;
 }
 

@@ -8,7 +8,8 @@
 // |              | are sRGB-decoded; float images are linear), to_uv (identity), format (auto: |
 // |              | 8/16-bit texels rounded to half floats as Mitsuba stores them; variant;     |
 // |              | fp16), accel (true; ignored)                                                |
-// | checkerboard | color0 (0.4), color1 (0.2) (values, not textures), to_uv (identity)         |
+// | checkerboard | color0 (0.4), color1 (0.2) (values or textures, evaluated at the unchanged  |
+// |              | uv as Mitsuba), to_uv (identity)                                            |
 // | rawconstant  | value (1): a float or an <rgb>                                              |
 // | bumpmap      | one nested texture (the height field; a bitmap), one nested bsdf, scale (1),|
 // |              | flip_invalid_normals (true), use_shadowing_function (true)                  |
@@ -75,9 +76,16 @@ Texture bitmap(BuildContext& ctx, Params& p) {
     } catch (const Error& e) {
         p.fail(*p.find("filename"), e.what());
     }
-    if (image.width < 2 || image.height < 2)
-        p.fail(*p.find("filename"), "the image must be at least 2 x 2 pixels (Mitsuba resamples "
-                                    "smaller ones; caustica refuses them)");
+    if (image.empty()) p.fail(*p.find("filename"), "the image has no pixels");
+    if (image.width < 2 || image.height < 2) {
+        // Mitsuba resamples to at least 2 x 2 with a tent filter, which repeats a lone row or
+        // column (textures/bitmap.cpp, expand_bitmap).
+        Image grown(image.width < 2 ? 2 : image.width, image.height < 2 ? 2 : image.height);
+        for (int y = 0; y < grown.height; ++y)
+            for (int x = 0; x < grown.width; ++x)
+                grown.set(x, y, image.at(x < image.width ? x : 0, y < image.height ? y : 0));
+        image = std::move(grown);
+    }
     if (!image.allFinite()) p.fail(*p.find("filename"), "the image has non-finite pixels");
     const bool half = format == "fp16" || (format == "auto" && info.bitsPerChannel <= 16);
     t.width = image.width;
@@ -96,13 +104,39 @@ Texture bitmap(BuildContext& ctx, Params& p) {
     return t;
 }
 
-Texture checkerboard(BuildContext&, Params& p) {
+/// A checkerboard colour: a value, or a nested/referenced texture (`child`; a constant one is
+/// kept as its value). Returns Mitsuba's mean() of the colour.
+Float checkerColour(BuildContext& ctx, Params& p, const std::string& name, Spectrum def,
+                    Spectrum& value, uint32_t& child) {
+    const int object = findTextureChild(p, name);
+    if (object < 0) {
+        value = p.getSpectrum(name, def);
+        return value.average();
+    }
+    if (const Property* prop = p.find(name))
+        p.fail(*prop, "'" + name + "' is given both as a value and as a texture");
+    const uint32_t index = buildTexture(ctx, object);
+    const Texture& t = ctx.scene.textures[index];
+    if (t.type == TextureType::Constant)
+        value = t.value;
+    else
+        child = index;
+    return t.mean;
+}
+
+Texture checkerboard(BuildContext& ctx, Params& p) {
+    for (const ChildRef& c : p.object().children)
+        if (ctx.desc.objects[size_t(c.object)].category == "texture" && c.name != "color0" &&
+            c.name != "color1")
+            p.failAtChild(c.object, "texture '" + c.name +
+                                        "' is not a parameter of checkerboard (color0, color1)");
+    p.takeChildren("texture");
     Texture t;
     t.type = TextureType::Checkerboard;
-    t.value = p.getSpectrum("color0", Spectrum(0.4f));
-    t.value1 = p.getSpectrum("color1", Spectrum(0.2f));
+    const Float mean0 = checkerColour(ctx, p, "color0", Spectrum(0.4f), t.value, t.child0);
+    const Float mean1 = checkerColour(ctx, p, "color1", Spectrum(0.2f), t.value1, t.child1);
     readToUv(p, t);
-    t.mean = (t.value.average() + t.value1.average()) / 2;
+    t.mean = (mean0 + mean1) / 2;
     return t;
 }
 
@@ -164,10 +198,16 @@ void readPerturbedFlags(const Params& p, Bsdf& b) {
 
 uint32_t buildTexture(BuildContext& ctx, int object) {
     ctx.used.insert(object);
-    if (auto it = ctx.textureIndex.find(object); it != ctx.textureIndex.end()) return it->second;
     const ObjectEntity& e = ctx.desc.objects[size_t(object)];
+    if (auto it = ctx.textureIndex.find(object); it != ctx.textureIndex.end()) {
+        if (it->second == kNoTexture)  // still being built: a checkerboard that nests itself
+            throw Error(e.where.file, e.where.line,
+                        e.describe() + " refers to itself (reference cycle)");
+        return it->second;
+    }
     if (e.category != "texture")
         throw Error(e.where.file, e.where.line, e.describe() + " is used where a texture is expected");
+    ctx.textureIndex[object] = kNoTexture;
     Params params(ctx.desc, object);
     const Texture t = kTexturePlugins.find(params)(ctx, params);
     params.finish(ctx.warnings);

@@ -22,8 +22,12 @@ ShapeGeometry makeSphereGeometry(const Params& p, const Transform& t) {
     g.kind = ShapeGeometry::Kind::Sphere;
     g.sphere.center = t.applyPoint(Vec3f(0));
     g.sphere.radius = s;
+    if (!isFinite(g.sphere.center) || !std::isfinite(s) || !(s > 0))
+        p.fail("sphere is not finite or has zero radius");
+    g.sphere.objectX = col[0] / s;  // to_object's rows: the uv frame
+    g.sphere.objectY = col[1] / s;
+    g.sphere.objectZ = col[2] / s;
     g.mirrored = dot(cross(col[0], col[1]), col[2]) < 0;
-    if (!isFinite(g.sphere.center) || !std::isfinite(s)) p.fail("sphere is not finite");
     return g;
 }
 

@@ -226,6 +226,26 @@ double reduceSum(const float* in, size_t n) {
     return downloadOne(result);
 }
 
+/// uint32 -> uint64 before adding: the sum cannot wrap, so it equals the CPU's exactly.
+struct ToU64 {
+    __host__ __device__ uint64_t operator()(uint32_t x) const { return uint64_t(x); }
+};
+
+uint64_t reduceSumU32(const uint32_t* in, size_t n) {
+    size_t tempBytes = 0;
+    CA_CUDA_CHECK(cub::DeviceReduce::TransformReduce(nullptr, tempBytes, in,
+                                                     static_cast<uint64_t*>(nullptr), n,
+                                                     cuda::std::plus<uint64_t>(), ToU64(),
+                                                     uint64_t(0)));
+    void* region[2];
+    const auto lock = scratchCache().carve({sizeof(uint64_t), tempBytes}, region);
+    uint64_t* result = static_cast<uint64_t*>(region[0]);
+    CA_CUDA_CHECK(cub::DeviceReduce::TransformReduce(region[1], tempBytes, in, result, n,
+                                                     cuda::std::plus<uint64_t>(), ToU64(),
+                                                     uint64_t(0)));
+    return downloadOne(result);
+}
+
 float reduceMax(const float* in, size_t n) {
     const float init = -std::numeric_limits<float>::infinity();
     size_t tempBytes = 0;
@@ -252,6 +272,7 @@ const GpuBackend kCudaBackend = {
     .compactIndices = &compactIndices,
     .reduceSum = &reduceSum,
     .reduceMax = &reduceMax,
+    .reduceSumU32 = &reduceSumU32,
 };
 
 }  // namespace

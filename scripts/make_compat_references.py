@@ -21,6 +21,8 @@ import platform
 import sys
 import time
 
+from make_references import batch_mean_variance
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 COMPAT = os.path.normpath(os.path.join(HERE, '..', 'tests', 'compat'))
 
@@ -39,14 +41,7 @@ def render(mi, dr, name, spp, batches):
         imgs.append(list(img.array))
         shape = tuple(img.shape)
     h, w, ch = shape
-    n = h * w * ch
-    mean = [0.0] * n
-    var = [0.0] * n
-    for i in range(n):
-        xs = [im[i] for im in imgs]
-        m = math.fsum(xs) / batches
-        mean[i] = m
-        var[i] = math.fsum((x - m) ** 2 for x in xs) / (batches - 1) / batches
+    mean, var = batch_mean_variance(imgs)
     out = os.path.join(COMPAT, 'reference')
     os.makedirs(out, exist_ok=True)
     stem = os.path.join(out, name)

@@ -73,6 +73,21 @@ def scene_hash(name, params, per):
     return h.hexdigest()[:16]
 
 
+def batch_mean_variance(imgs):
+    """Per value of the batch images `imgs` (flat lists of one length): the mean over the batches
+    and its variance, the unbiased sample variance across the batches divided by their number
+    (0 for a single batch). Also used by make_compat_references.py."""
+    batches = len(imgs)
+    mean = [0.0] * len(imgs[0])
+    var = [0.0] * len(imgs[0])
+    for i in range(len(mean)):
+        xs = [im[i] for im in imgs]
+        m = math.fsum(xs) / batches
+        mean[i] = m
+        var[i] = math.fsum((x - m) ** 2 for x in xs) / (batches - 1) / batches if batches > 1 else 0.0
+    return mean, var
+
+
 def render_reference(mi, dr, name, spp, batches, res, seed0, extra, cache):
     path = os.path.join(SCENES, name, 'scene.xml')
     params = dict(width=res, height=res)
@@ -81,7 +96,6 @@ def render_reference(mi, dr, name, spp, batches, res, seed0, extra, cache):
     if spp % batches:
         sys.exit('%s: --spp (%d) must be a multiple of --batches (%d)' % (name, spp, batches))
     per = spp // batches
-    n = res * res * 3
     key = scene_hash(name, params, per)
     if cache:
         os.makedirs(cache, exist_ok=True)
@@ -110,13 +124,7 @@ def render_reference(mi, dr, name, spp, batches, res, seed0, extra, cache):
         imgs.append(list(img.array))
     wall = math.fsum(times)
 
-    mean = [0.0] * n
-    var = [0.0] * n
-    for i in range(n):
-        xs = [im[i] for im in imgs]
-        m = math.fsum(xs) / batches
-        mean[i] = m
-        var[i] = math.fsum((x - m) ** 2 for x in xs) / (batches - 1) / batches if batches > 1 else 0.0
+    mean, var = batch_mean_variance(imgs)
 
     outdir = os.path.join(SCENES, name, 'reference')
     os.makedirs(outdir, exist_ok=True)

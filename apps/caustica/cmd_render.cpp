@@ -26,6 +26,7 @@
 
 #ifdef CAUSTICA_WITH_CUDA
 #include "cuda/cuda_backend.h"
+#include "cuda/gpu_mlt.h"
 #include "cuda/gpu_path.h"
 #endif
 
@@ -146,20 +147,24 @@ std::function<int()> addRenderCommand(CLI::App& app) {
         if (!seedGiven) opt->seed = scene.seed;
         if (!opt->integrator.empty()) parseIntegratorType(opt->integrator, scene.integrator.type);
         const bool mlt = scene.integrator.type == IntegratorType::Mlt;
-        if (mlt && opt->resume) throw Error("--resume: the mlt integrator keeps no resumable checkpoint");
         if (!mlt && !rendersBySamplePasses(scene.integrator.type))
             throw Error(std::string("integrator ") + integratorTypeName(scene.integrator.type) +
                         " is not available in this build");
-        // --device auto falls back to the CPU for integrators the GPU does not run yet.
-        if (onGpu && scene.integrator.type != IntegratorType::Path && opt->device == "auto") onGpu = false;
-        if (onGpu && scene.integrator.type != IntegratorType::Path)
-            throw Error(std::string("--device cuda renders with the path integrator only; ") +
+        // --device auto falls back to the CPU for what the GPU does not run: integrators other
+        // than path and mlt, and mlt's float state (GPU kernels: compact state only).
+        const bool gpuRuns = scene.integrator.type == IntegratorType::Path || (mlt && opt->mlt.state == "compact");
+        if (onGpu && !gpuRuns && opt->device == "auto") onGpu = false;
+        if (onGpu && mlt && !gpuRuns)
+            throw Error("--mlt-state float is not available on the GPU (its MLT kernels are compiled for the "
+                        "compact state only); use --mlt-state compact or --device cpu");
+        if (onGpu && !mlt && scene.integrator.type != IntegratorType::Path)
+            throw Error(std::string("--device cuda renders with the path and mlt integrators only; ") +
                         integratorTypeName(scene.integrator.type) + " runs on --device cpu");
         const int sppTarget = opt->spp > 0 ? opt->spp : (opt->time > 0 ? 0 : scene.sampleCount);
 
         Film film(scene.film);
         const std::string checkpoint = opt->outputs.front() + ".ckpt";
-        if (opt->resume) {
+        if (opt->resume && !mlt) {  // an MLT render reads its own checkpoint (render_mlt.cpp)
             if (!std::filesystem::exists(checkpoint)) throw Error(checkpoint + ": no checkpoint to resume from");
             loadCheckpoint(checkpoint, film, opt->seed);
             std::fprintf(stderr, "resuming from %s at %d spp\n", checkpoint.c_str(), int(film.samplesPerPixel()));
@@ -190,8 +195,26 @@ std::function<int()> addRenderCommand(CLI::App& app) {
             request.buildSeconds = buildSeconds;
             request.info = OutputInfo{opt->scene, "mlt", accelName, opt->seed, scene.film.tonemap};
             request.cancel = &gCancel;
-            const int code = runMltRender(scene, accel, mltSettingsFrom(scene.integrator, opt->mlt), opt->seed, request);
-            if (opt->kernelStats) std::printf("kernel statistics (cpu):\n%s", KernelStats::global().table().c_str());
+            request.checkpoint = checkpoint;
+            request.resume = opt->resume;
+            const MltSettings mltSettings = mltSettingsFrom(scene.integrator, opt->mlt);
+#ifdef CAUSTICA_WITH_CUDA
+            if (onGpu) {  // the GPU driver (cuda/gpu_mlt.h), on the own BVH
+                request.device = "cuda, " + cudaDeviceDescription();
+                resetCudaPeakBytes();
+                request.makeRenderer = [&scene, &accel, &mltSettings, seed = opt->seed] {
+                    return makeGpuMltRenderer(scene, *accel.bvh(), pathSettingsFrom(scene.integrator), mltSettings,
+                                              seed);
+                };
+            }
+#endif
+            const int code = runMltRender(scene, accel, mltSettings, opt->seed, request);
+#ifdef CAUSTICA_WITH_CUDA
+            if (onGpu) std::printf("GPU memory: peak %s allocated\n", formatBytes(cudaMemoryCounters().peak).c_str());
+#endif
+            if (opt->kernelStats)
+                std::printf("kernel statistics (%s):\n%s", deviceName(onGpu ? DeviceKind::Cuda : DeviceKind::Cpu),
+                            KernelStats::global().table().c_str());
             return code;
         }
         const PathSettings settings = pathSettingsFrom(scene.integrator);

@@ -1,11 +1,14 @@
 #include "render_mlt.h"
 
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <memory>
 
 #include "caustica/integrators/mlt/mlt_loop.h"
 #include "caustica/integrators/path/gpu_memory.h"
 #include "caustica/integrators/path/path_integrator.h"
+#include "caustica/util/error.h"
 #include "caustica/util/progress.h"
 
 namespace caustica::cli {
@@ -81,15 +84,33 @@ void printMltSummary(const MltRenderer& mlt, std::FILE* out) {
 
 int runMltRender(const Scene& scene, const Accel& accel, const MltSettings& settings, uint64_t seed,
                  const MltRunRequest& r) {
-    MltRenderer mlt(scene, accel, pathSettingsFrom(scene.integrator), settings, seed);
+    const std::unique_ptr<MltRenderer> renderer =
+        r.makeRenderer ? r.makeRenderer()
+                       : std::make_unique<MltRenderer>(scene, accel, pathSettingsFrom(scene.integrator), settings, seed);
+    MltRenderer& mlt = *renderer;
+    if (r.resume) {
+        if (!mlt.resumable()) throw Error("--resume: this MLT driver keeps no resumable checkpoint");
+        std::ifstream in(r.checkpoint, std::ios::binary);
+        if (!in) throw Error(r.checkpoint + ": no checkpoint to resume from");
+        try {
+            mlt.load(in);
+        } catch (const Error& e) {
+            throw Error(r.checkpoint + ": " + e.what());
+        }
+        std::fprintf(stderr, "resuming from %s at %.4g mutations/pixel\n", r.checkpoint.c_str(), mlt.mutationsPerPixel());
+    }
+    auto saveState = [&] {
+        if (mlt.resumable() && !r.checkpoint.empty())
+            writeFileAtomically(r.checkpoint, [&](std::ostream& out) { mlt.save(out); });
+    };
     MltBudget budget;
     budget.mutationsPerPixel = r.mutationsPerPixel;
     budget.timeLimit = r.timeLimit;
     budget.cancel = r.cancel;
     std::unique_ptr<ProgressReporter> progress;
     if (!r.quiet) {
-        std::fprintf(stderr, "device: cpu; integrator mlt, %u chains x %u proposals, %s target, %s state, %s splats\n",
-                     settings.chains, settings.proposals,
+        std::fprintf(stderr, "device: %s; integrator mlt, %u chains x %u proposals, %s target, %s state, %s splats\n",
+                     r.device.c_str(), settings.chains, settings.proposals,
                      settings.target == MltTarget::Relative ? "relative" : "luminance",
                      settings.state == MltStateKind::Compact ? "compact" : "float",
                      settings.splat == MltSplatKind::Atomic ? "atomic" : "sort");
@@ -99,17 +120,22 @@ int runMltRender(const Scene& scene, const Accel& accel, const MltSettings& sett
     auto spp = [&] { return std::to_string(mlt.mutationsPerPixel()); };
     auto iterationDone = [&](const MltRenderer& m, const RenderStats& stats) {
         if (progress) progress->update(m.mutationsPerPixel());
-        // MLT keeps no resumable checkpoint: the image so far is written instead.
         if (r.checkpointEvery > 0 && stats.seconds - lastWrite >= r.checkpointEvery) {
             lastWrite = stats.seconds;
             writeImageOutputs(r.outputs, m.develop(), spp(), stats, r.info);
+            saveState();
         }
     };
     RenderStats stats = runMlt(mlt, budget, iterationDone);
     if (progress) progress->finish();
     writeImageOutputs(r.outputs, mlt.develop(), spp(), stats, r.info);
-    if (stats.cancelled)
-        std::fprintf(stderr, "interrupted: wrote the image after %.3g mutations/pixel\n", mlt.mutationsPerPixel());
+    if (stats.cancelled) {
+        saveState();
+        std::fprintf(stderr, "interrupted: wrote the image after %.4g mutations/pixel%s\n", mlt.mutationsPerPixel(),
+                     mlt.resumable() ? (" and " + r.checkpoint + " (continue with --resume)").c_str() : "");
+    } else if (!r.checkpoint.empty() && std::filesystem::exists(r.checkpoint)) {
+        std::filesystem::remove(r.checkpoint);
+    }
     printSummary(stats, stdout);
     printMltSummary(mlt, stdout);
     if (!r.statsJson.empty()) {

@@ -2,6 +2,8 @@
 #pragma once
 
 #include <atomic>
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -37,6 +39,13 @@ struct MltRunRequest {
     double buildSeconds = 0;
     OutputInfo info;
     const std::atomic<bool>* cancel = nullptr;
+    /// The driver to run (the GPU's: cuda/gpu_mlt.h); unset: the CPU driver over `accel`.
+    std::function<std::unique_ptr<MltRenderer>()> makeRenderer;
+    std::string device = "cpu";  // printed as "device: <device>" ("cuda, <GPU name>")
+    /// Resumable checkpoint (OUTPUT.ckpt): written with the images every checkpointEvery seconds
+    /// and on an interruption, read first with `resume`, removed after a finished render.
+    std::string checkpoint;
+    bool resume = false;
 };
 
 /// Renders with MLT, writes the outputs (also every checkpointEvery seconds), prints the summary

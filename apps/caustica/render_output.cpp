@@ -91,17 +91,23 @@ namespace {
 constexpr char kCheckpointMagic[8] = {'C', 'A', 'U', 'S', 'C', 'K', 'P', '1'};
 }
 
-void saveCheckpoint(const std::string& path, const Film& film, uint64_t seed) {
+void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
     const std::string tmp = path + ".tmp";
     {
         std::ofstream f(tmp, std::ios::binary);
         if (!f) throw Error(tmp + ": cannot write checkpoint");
-        f.write(kCheckpointMagic, sizeof kCheckpointMagic);
-        f.write(reinterpret_cast<const char*>(&seed), sizeof seed);
-        film.save(f);
+        write(f);
         if (!f) throw Error(tmp + ": writing the checkpoint failed");
     }
     std::filesystem::rename(tmp, path);  // atomic: a kill never leaves a half-written checkpoint
+}
+
+void saveCheckpoint(const std::string& path, const Film& film, uint64_t seed) {
+    writeFileAtomically(path, [&](std::ostream& f) {
+        f.write(kCheckpointMagic, sizeof kCheckpointMagic);
+        f.write(reinterpret_cast<const char*>(&seed), sizeof seed);
+        film.save(f);
+    });
 }
 
 void loadCheckpoint(const std::string& path, Film& film, uint64_t seed) {

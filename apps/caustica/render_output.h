@@ -3,6 +3,8 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <functional>
+#include <iosfwd>
 #include <string>
 #include <utility>
 #include <vector>
@@ -39,5 +41,8 @@ void writeStatsJson(const std::string& path, const RenderStats& stats, const Out
 /// Checkpoints: the film's accumulated sums plus the seed, written atomically (temp + rename).
 void saveCheckpoint(const std::string& path, const Film& film, uint64_t seed);
 void loadCheckpoint(const std::string& path, Film& film, uint64_t seed);
+/// Writes `path` through `write` into path.tmp, then renames it: a kill never leaves a
+/// half-written file.
+void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write);
 
 }  // namespace caustica::cli

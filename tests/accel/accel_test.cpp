@@ -28,10 +28,7 @@ TEST(AccelKind, ParsesNamesAndRejectsOthers) {
 class AccelBackends : public ::testing::TestWithParam<AccelKind> {};
 
 TEST_P(AccelBackends, VisitAnswersLikeBruteForce) {
-    test::RandomSceneOptions opt;
-    opt.numTriangles = 500;
-    opt.numSpheres = 50;
-    const Scene scene = test::makeRandomScene(opt);
+    const Scene scene = test::makeRandomScene(test::sceneOf(500, 50, 1));
     const Accel accel(scene, GetParam());
     EXPECT_EQ(accel.kind(), GetParam());
     EXPECT_EQ(accel.bvh() != nullptr, GetParam() == AccelKind::Bvh);

@@ -13,6 +13,8 @@
 namespace caustica {
 namespace {
 
+using test::sceneOf;
+
 /// One traversal variant under test.
 struct Variant {
     const char* name;
@@ -120,14 +122,6 @@ TEST_P(BvhVsBruteForce, WithoutParentLinks) {
     BvhBuildOptions options;
     options.parentLinks = false;
     expectMatchesBruteForce(test::makeRandomScene(GetParam().scene), options, 500, 37);
-}
-
-test::RandomSceneOptions sceneOf(uint32_t tris, uint32_t spheres, uint64_t seed) {
-    test::RandomSceneOptions o;
-    o.numTriangles = tris;
-    o.numSpheres = spheres;
-    o.seed = seed;
-    return o;
 }
 
 std::vector<BvhCase> bvhCases() {

@@ -11,6 +11,7 @@
 #include "caustica/accel/embree_accel.h"
 #include "caustica/accel/intersector.h"
 #include "caustica/accel/primitive_intersect.h"
+#include "scene/scene_builder.h"
 
 namespace caustica {
 namespace {
@@ -82,22 +83,11 @@ TEST(CylinderIntersect, MatchesDoublePrecisionOnRandomRays) {
 
 /// Triangles and spheres from makeRandomScene plus `n` random cylinders (one shape each).
 Scene mixedScene(uint32_t tris, uint32_t spheres, uint32_t cylinders, uint64_t seed) {
-    test::RandomSceneOptions opt;
-    opt.numTriangles = tris;
-    opt.numSpheres = spheres;
-    opt.seed = seed;
-    Scene scene = test::makeRandomScene(opt);
+    Scene scene = test::makeRandomScene(test::sceneOf(tris, spheres, seed));
     test::TestRng rng(seed + 100);
-    for (uint32_t i = 0; i < cylinders; ++i) {
-        Shape s;
-        s.type = ShapeType::Cylinder;
-        s.primOffset = uint32_t(scene.cylinders.size());
-        s.primCount = 1;
-        scene.shapes.push_back(s);
-        scene.cylinders.push_back(makeCylinder(rng.inBox(Vec3f(-5), Vec3f(5)), rng.direction(),
-                                               rng.uniform(0.05f, 0.8f), rng.uniform(0.2f, 3),
-                                               uint32_t(scene.shapes.size() - 1)));
-    }
+    for (uint32_t i = 0; i < cylinders; ++i)
+        test::addCylinder(scene, rng.inBox(Vec3f(-5), Vec3f(5)), rng.direction(),
+                          rng.uniform(0.05f, 0.8f), rng.uniform(0.2f, 3));
     return scene;
 }
 

@@ -1,39 +1,13 @@
-// cylinder_reference.h — builders of open cylinders and their ray crossings in double precision,
-// the reference of the cylinder intersection and cylinder light tests (test helper, host only).
+// cylinder_reference.h — ray crossings of open cylinders in double precision, the reference of
+// the cylinder intersection and cylinder light tests (test helper, host only; the cylinders
+// themselves are built by scene/scene_builder.h).
 #pragma once
 
 #include <cmath>
-#include <cstdint>
 
 #include "caustica/scene/scene.h"
 
 namespace caustica::test {
-
-inline Cylinder makeCylinder(Vec3f base, Vec3f axis, Float radius, Float length,
-                             uint32_t shape = 0) {
-    Cylinder c;
-    c.base = base;
-    c.axis = normalize(axis);
-    c.xAxis = Frame(c.axis).s;
-    c.radius = radius;
-    c.length = length;
-    c.shape = shape;
-    return c;
-}
-
-/// Appends a cylinder shape of one cylinder and returns its shape index.
-inline uint32_t addCylinder(Scene& scene, Vec3f base, Vec3f axis, Float radius, Float length,
-                            bool flipNormals = false) {
-    const uint32_t shapeId = uint32_t(scene.shapes.size());
-    Shape shape;
-    shape.type = ShapeType::Cylinder;
-    shape.primOffset = uint32_t(scene.cylinders.size());
-    shape.primCount = 1;
-    shape.flipNormals = flipNormals;
-    scene.cylinders.push_back(makeCylinder(base, axis, radius, length, shapeId));
-    scene.shapes.push_back(shape);
-    return shapeId;
-}
 
 /// The line o + t d against the infinite cylinder around c's axis, in double: the roots t of
 /// |f + t p|² = r², where f and p are o - base and d with their components along the axis

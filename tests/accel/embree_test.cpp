@@ -11,6 +11,8 @@
 namespace caustica {
 namespace {
 
+using test::sceneOf;
+
 constexpr Float kRelTolerance = 1e-4f;
 
 bool closeRel(Float a, Float b) {
@@ -145,14 +147,6 @@ Mismatches compareWithBruteForce(const Scene& scene, uint32_t numRays, uint64_t 
     }
     EXPECT_LE(m.ambiguousRays, maxAmbiguousFraction * numRays);
     return m;
-}
-
-test::RandomSceneOptions sceneOf(uint32_t tris, uint32_t spheres, uint64_t seed) {
-    test::RandomSceneOptions o;
-    o.numTriangles = tris;
-    o.numSpheres = spheres;
-    o.seed = seed;
-    return o;
 }
 
 TEST(Embree, MatchesBruteForceOnRandomScenes) {

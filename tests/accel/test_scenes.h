@@ -8,6 +8,7 @@
 #include "caustica/scene/ray.h"
 #include "caustica/scene/scene.h"
 #include "caustica/util/rng.h"
+#include "scene/scene_builder.h"
 
 namespace caustica::test {
 
@@ -44,7 +45,16 @@ struct RandomSceneOptions {
     uint64_t seed = 1;
 };
 
-/// Appends one mesh shape (empty triangle list allowed) and `Shape`s for spheres added later.
+/// Options of `tris` triangles and `spheres` spheres drawn from `seed`, the rest default.
+inline RandomSceneOptions sceneOf(uint32_t tris, uint32_t spheres, uint64_t seed) {
+    RandomSceneOptions o;
+    o.numTriangles = tris;
+    o.numSpheres = spheres;
+    o.seed = seed;
+    return o;
+}
+
+/// Appends one mesh shape (empty triangle list allowed) whose triangles are added later.
 inline uint32_t addMeshShape(Scene& scene, uint32_t primOffset, uint32_t primCount) {
     Shape shape;
     shape.type = ShapeType::Mesh;
@@ -52,15 +62,6 @@ inline uint32_t addMeshShape(Scene& scene, uint32_t primOffset, uint32_t primCou
     shape.primCount = primCount;
     scene.shapes.push_back(shape);
     return uint32_t(scene.shapes.size() - 1);
-}
-
-inline void addSphere(Scene& scene, Vec3f center, Float radius) {
-    Shape shape;
-    shape.type = ShapeType::Sphere;
-    shape.primOffset = uint32_t(scene.spheres.size());
-    shape.primCount = 1;
-    scene.shapes.push_back(shape);
-    scene.spheres.push_back(Sphere{center, radius, uint32_t(scene.shapes.size() - 1)});
 }
 
 inline void addTriangle(Scene& scene, uint32_t shape, Vec3f a, Vec3f b, Vec3f c) {

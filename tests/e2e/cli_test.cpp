@@ -30,6 +30,36 @@ protected:
         return path(name);
     }
     const std::string box = sourcePath("scenes/cornell-box/scene.xml");
+
+    // A render killed (SIGKILL, no chance to clean up) after it wrote a checkpoint, resumed to
+    // `target` samples (or mutations) per pixel, gives the uninterrupted render's image bit for bit.
+    void expectKilledRenderResumes(const std::string& scene, const std::string& args, int target) {
+        std::string cmd = std::string(CAUSTICA_BINARY) + " render " + scene + args +
+                          "--spp 100000 --checkpoint-every 0.05 -o " + path("part.exr") + " >/dev/null 2>&1 & echo $!";
+        FILE* p = popen(cmd.c_str(), "r");
+        ASSERT_NE(p, nullptr);
+        int pid = 0;
+        ASSERT_EQ(fscanf(p, "%d", &pid), 1);
+        pclose(p);
+        const std::string ckpt = path("part.exr") + ".ckpt";
+        for (int i = 0; i < 600 && !fs::exists(ckpt); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        std::system(("kill -9 " + std::to_string(pid)).c_str());
+        std::this_thread::sleep_for(std::chrono::milliseconds(200));
+        ASSERT_TRUE(fs::exists(ckpt)) << "no checkpoint was written";
+        // The image written with the checkpoint is a valid image holding the finished work.
+        const int partial = std::stoi(readImageMetadata(path("part.exr")).entries.at("caustica.spp"));
+        if (partial >= target) GTEST_SKIP() << "the killed render was already at " << partial << " per pixel";
+
+        Result resumed = run("render " + scene + args + "--spp " + std::to_string(target) + " --resume -o " + path("part.exr"));
+        ASSERT_EQ(resumed.exitCode, 0) << resumed.output;
+        EXPECT_NE(resumed.output.find("resuming from"), std::string::npos) << resumed.output;
+        EXPECT_FALSE(fs::exists(ckpt)) << "a finished render removes its checkpoint";
+        ASSERT_EQ(run("render " + scene + args + "--spp " + std::to_string(target) + " -o " + path("full.exr")).exitCode, 0);
+        Image a = readImage(path("full.exr")), b = readImage(path("part.exr"));
+        ASSERT_EQ(a.rgb.size(), b.rgb.size());
+        EXPECT_EQ(0, std::memcmp(a.rgb.data(), b.rgb.data(), a.rgb.size() * sizeof(float)))
+            << "the resumed render differs from the uninterrupted one (killed at " << partial << " per pixel)";
+    }
 };
 
 TEST_F(Cli, RendersAllFormatsWithStatistics) {
@@ -98,33 +128,25 @@ TEST_F(Cli, BadInputIsRefusedWithOneLine) {
 }
 
 TEST_F(Cli, KilledRenderResumesToTheSameImage) {
-    const std::string args = " -D width=64 -D height=64 --spp-per-pass 1 -q --seed 3 ";
-    const int target = 200;
-    // A render killed (SIGKILL, no chance to clean up) after it wrote a checkpoint.
-    std::string cmd = std::string(CAUSTICA_BINARY) + " render " + box + args +
-                      "--spp 100000 --checkpoint-every 0.05 -o " + path("part.exr") + " >/dev/null 2>&1 & echo $!";
-    FILE* p = popen(cmd.c_str(), "r");
-    ASSERT_NE(p, nullptr);
-    int pid = 0;
-    ASSERT_EQ(fscanf(p, "%d", &pid), 1);
-    pclose(p);
-    const std::string ckpt = path("part.exr") + ".ckpt";
-    for (int i = 0; i < 600 && !fs::exists(ckpt); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    std::system(("kill -9 " + std::to_string(pid)).c_str());
-    std::this_thread::sleep_for(std::chrono::milliseconds(200));
-    ASSERT_TRUE(fs::exists(ckpt)) << "no checkpoint was written";
-    // The image written with the checkpoint is a valid image holding the finished passes.
-    const int partialSpp = std::stoi(readImageMetadata(path("part.exr")).entries.at("caustica.spp"));
-    if (partialSpp >= target) GTEST_SKIP() << "the killed render was already at " << partialSpp << " spp";
+    expectKilledRenderResumes(box, " -D width=64 -D height=64 --spp-per-pass 1 -q --seed 3 ", 200);
+}
 
-    Result resumed = run("render " + box + args + "--spp " + std::to_string(target) + " --resume -o " + path("part.exr"));
-    ASSERT_EQ(resumed.exitCode, 0) << resumed.output;
-    EXPECT_FALSE(fs::exists(ckpt)) << "a finished render removes its checkpoint";
-    ASSERT_EQ(run("render " + box + args + "--spp " + std::to_string(target) + " -o " + path("full.exr")).exitCode, 0);
-    Image a = readImage(path("full.exr")), b = readImage(path("part.exr"));
-    ASSERT_EQ(a.rgb.size(), b.rgb.size());
-    EXPECT_EQ(0, std::memcmp(a.rgb.data(), b.rgb.data(), a.rgb.size() * sizeof(float)))
-        << "the resumed render differs from the uninterrupted one (killed at " << partialSpp << " spp)";
+// MLT keeps its chains, splat sums, b and counters (sort splats: the image is bit-reproducible).
+TEST_F(Cli, KilledMltRenderResumesToTheSameImage) {
+    expectKilledRenderResumes(box,
+                              " -D width=32 -D height=32 --integrator mlt --mlt-chains 64 --mlt-bootstrap 4096 "
+                              "--splat sort -q --seed 3 ",
+                              60);
+}
+
+TEST_F(Cli, ResumingWithAnotherIntegratorsCheckpointIsRefused) {
+    const std::string args = " -D width=8 -D height=8 -q --seed 1 --checkpoint-every 0 ";
+    // A path checkpoint is left by an interrupted render; make one by hand from a finished one.
+    ASSERT_EQ(run("render " + box + args + "--spp 1 -o " + path("p.exr")).exitCode, 0);
+    std::ofstream(path("p.exr.ckpt")) << "CAUSCKP1 not an MLT checkpoint";
+    expectOneLineError(run("render " + box + args + "--integrator mlt --mlt-chains 16 --spp 1 --resume -o " +
+                           path("p.exr")),
+                       "p.exr.ckpt");
 }
 
 TEST_F(Cli, ResumeWithoutCheckpointIsRefused) {

@@ -1,5 +1,5 @@
 // The relative MLT target's pixel weights (mlt_target.h): inverse brightness where the bootstrap
-// sees enough samples, blurred where it does not, floored, and harmless on a black bootstrap.
+// sees enough samples, blurred where it does not, floored at the mean, and harmless on a black bootstrap.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -22,23 +22,26 @@ struct Samples {
     }
 };
 
-TEST(MltTarget, WeightsAreInverseBrightnessWithEnoughSamples) {
-    // 2 x 1 film, 64 samples per pixel: no blur; brightness 1 and 3, mean 2.
+TEST(MltTarget, BrightPixelsAreDampedByTheirBrightness) {
+    // 3 x 1 film, 64 samples per pixel: no blur; brightness 1, 2 and 6, mean 3: the bright pixel
+    // is damped by mean / B, the others keep weight 1.
     Samples s;
     s.add(0, 1.0f, 64);
-    s.add(1, 3.0f, 64);
-    const std::vector<float> w = mltRelativePixelWeights(s.luminance.data(), s.pixel.data(), s.luminance.size(), 2, 1);
-    ASSERT_EQ(w.size(), 2u);
-    EXPECT_NEAR(w[0], 2.0f, 1e-5f);
-    EXPECT_NEAR(w[1], 2.0f / 3.0f, 1e-5f);
+    s.add(1, 2.0f, 64);
+    s.add(2, 6.0f, 64);
+    const std::vector<float> w = mltRelativePixelWeights(s.luminance.data(), s.pixel.data(), s.luminance.size(), 3, 1);
+    ASSERT_EQ(w.size(), 3u);
+    EXPECT_NEAR(w[0], 1.0f, 1e-5f);
+    EXPECT_NEAR(w[1], 1.0f, 1e-5f);
+    EXPECT_NEAR(w[2], 0.5f, 1e-5f);
 }
 
-TEST(MltTarget, DarkPixelsAreFlooredAtAFractionOfTheMean) {
+TEST(MltTarget, DarkPixelsKeepTheLuminanceWeight) {
     Samples s;
     s.add(0, 0.0f, 64);
     s.add(1, 2.0f, 64);
     const std::vector<float> w = mltRelativePixelWeights(s.luminance.data(), s.pixel.data(), s.luminance.size(), 2, 1);
-    EXPECT_NEAR(w[0], float(1.0 / kMltTargetFloor), 1e-3f);  // mean 1, brightness floored at 0.05
+    EXPECT_NEAR(w[0], 1.0f, 1e-5f);  // mean 1: a black pixel's brightness is floored at the mean
     EXPECT_NEAR(w[1], 0.5f, 1e-5f);
     for (float x : w) EXPECT_TRUE(std::isfinite(x) && x > 0);
 }
@@ -51,7 +54,8 @@ TEST(MltTarget, FewSamplesAreBlurredOverNeighbours) {
     const std::vector<float> w = mltRelativePixelWeights(s.luminance.data(), s.pixel.data(), s.luminance.size(), 9, 1);
     EXPECT_NEAR(w[3], w[4], 1e-5f);
     EXPECT_NEAR(w[5], w[4], 1e-5f);
-    EXPECT_GT(w[0], w[4]);  // far from the light: floored, larger weight
+    EXPECT_NEAR(w[4], 1.0f / 3.0f, 1e-5f);  // blurred brightness 3, mean 1
+    EXPECT_NEAR(w[0], 1.0f, 1e-5f);         // far from the light: floored at the mean
 }
 
 TEST(MltTarget, ABlackBootstrapGivesUnitWeights) {

@@ -2,8 +2,6 @@
 // docs/FUZZING.md) for meshes and images: each must now be refused with one clean
 // caustica::Error (scenes found by fuzzing go to tests/io/data/bad instead).
 #include <cstring>
-#include <fstream>
-#include <sstream>
 
 #include "caustica/io/image_io.h"
 #include "scene_test_util.h"
@@ -11,11 +9,13 @@
 namespace caustica::test {
 namespace {
 
-std::string readBytes(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
+/// Writes a 2x2 EXR with the string attribute spp = "16" to `path` and returns its bytes.
+std::string writeExrWithSpp(const std::string& path) {
+    Image img(2, 2);
+    ImageMetadata md;
+    md.entries["spp"] = "16";
+    writeImage(path, img, md);
+    return readBytes(path);
 }
 
 /// `fn` must throw caustica::Error (and nothing else) whose one-line message contains `reason`.
@@ -37,12 +37,8 @@ void expectCleanError(F fn, const std::string& reason) {
 // OpenEXR allocated the 2 GB before reading it (out-of-memory under the fuzzer's 2 GB limit).
 TEST(FuzzRegression, ExrAttributeLargerThanFile) {
     TempDir dir;
-    Image img(2, 2);
-    ImageMetadata md;
-    md.entries["spp"] = "16";
     const std::string good = dir.path("good.exr");
-    writeImage(good, img, md);
-    std::string bytes = readBytes(good);
+    std::string bytes = writeExrWithSpp(good);
     const std::string tag = std::string("spp\0string\0", 11);
     const size_t at = bytes.find(tag);
     ASSERT_NE(at, std::string::npos);
@@ -64,12 +60,8 @@ TEST(FuzzRegression, ExrAttributeLargerThanFile) {
 // 16 bytes whatever the size field says, so the header walk must too (found by fuzz_image).
 TEST(FuzzRegression, ExrAttributeLargerThanFileAfterWrongFixedSize) {
     TempDir dir;
-    Image img(2, 2);
-    ImageMetadata md;
-    md.entries["spp"] = "16";
     const std::string good = dir.path("good.exr");
-    writeImage(good, img, md);
-    std::string bytes = readBytes(good);
+    std::string bytes = writeExrWithSpp(good);
     const std::string box = std::string("displayWindow\0box2i\0", 20);
     const std::string spp = std::string("spp\0string\0", 11);
     const size_t atBox = bytes.find(box), atSpp = bytes.find(spp);

@@ -5,30 +5,23 @@
 #include <stb_image_write.h>
 
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <vector>
 
-#include <unistd.h>
-
 #include "caustica/io/image_io.h"
 #include "caustica/util/error.h"
+#include "scene_test_util.h"
 
 namespace caustica {
 namespace {
 
 namespace fs = std::filesystem;
+using test::readBytes;
+using test::writeBytes;
 
 class ImageFormats : public ::testing::Test {
 protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("caustica_image_formats_" + std::to_string(::getpid()) + "_" +
-                ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-    std::string path(const std::string& name) const { return (dir_ / name).string(); }
+    std::string path(const std::string& name) const { return dir_.path(name); }
 
     /// An 8 x 8 JPEG of one flat colour (JPEG keeps a flat block almost exact).
     std::string writeJpeg(const std::string& name, unsigned char r, unsigned char g,
@@ -38,14 +31,6 @@ protected:
         const std::string p = path(name);
         EXPECT_TRUE(stbi_write_jpg(p.c_str(), 8, 8, 3, px.data(), quality));
         return p;
-    }
-
-    static std::string readBytes(const std::string& p) {
-        std::ifstream in(p, std::ios::binary);
-        return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-    }
-    void writeBytes(const std::string& p, const std::string& bytes) const {
-        std::ofstream(p, std::ios::binary) << bytes;
     }
 
     /// Expects readImage(p) to throw a caustica::Error naming the file and `reason`.
@@ -60,7 +45,7 @@ protected:
         }
     }
 
-    fs::path dir_;
+    test::TempDir dir_;  // fresh for each test
 };
 
 TEST_F(ImageFormats, JpegIsDecodedFromSrgb) {

@@ -11,30 +11,23 @@
 
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <random>
 #include <string>
 
-#include <unistd.h>
-
 #include "caustica/io/image_io.h"
 #include "caustica/util/error.h"
+#include "scene_test_util.h"
 
 namespace caustica {
 namespace {
 
 namespace fs = std::filesystem;
+using test::readBytes;
+using test::writeBytes;
 
 class ImageIo : public ::testing::Test {
 protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("caustica_image_io_" + std::to_string(::getpid()) + "_" +
-                ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-    std::string path(const std::string& name) const { return (dir_ / name).string(); }
+    std::string path(const std::string& name) const { return dir_.path(name); }
 
     static Image randomImage(int w, int h, float lo, float hi, uint32_t seed) {
         Image img(w, h);
@@ -42,13 +35,6 @@ protected:
         std::uniform_real_distribution<float> u(lo, hi);
         for (float& v : img.rgb) v = u(rng);
         return img;
-    }
-    static std::string readBytes(const std::string& p) {
-        std::ifstream in(p, std::ios::binary);
-        return std::string(std::istreambuf_iterator<char>(in), {});
-    }
-    static void writeBytes(const std::string& p, const std::string& bytes) {
-        std::ofstream(p, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
     }
     // Expects readImage(p) to throw a caustica::Error naming p.
     static void expectReadError(const std::string& p) {
@@ -61,7 +47,7 @@ protected:
         }
     }
 
-    fs::path dir_;
+    test::TempDir dir_;  // fresh for each test
 };
 
 TEST_F(ImageIo, ExrFloatRoundTripIsExactWithMetadata) {

@@ -1,8 +1,6 @@
 // robustness_test.cpp — damaged inputs (every truncation, random byte changes) either load or
 // are refused with caustica::Error; never a crash, a hang or another exception type.
-#include <fstream>
 #include <random>
-#include <sstream>
 
 #include "caustica/io/mesh/obj_loader.h"
 #include "caustica/io/mesh/ply_loader.h"
@@ -11,13 +9,6 @@
 
 namespace caustica::test {
 namespace {
-
-std::string readFile(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
 
 /// Runs `load` on `path`; only success or caustica::Error are acceptable outcomes.
 template <class Load>
@@ -49,7 +40,7 @@ void damage(const TempDir& dir, const std::string& name, const std::string& orig
 
 TEST(Robustness, DamagedSceneXml) {
     TempDir dir;
-    std::string xml = readFile(CAUSTICA_SOURCE_DIR "/scenes/cornell-box/scene.xml");
+    std::string xml = readBytes(CAUSTICA_SOURCE_DIR "/scenes/cornell-box/scene.xml");
     ASSERT_FALSE(xml.empty());
     auto load = [](const std::string& p) {
         std::vector<std::string> w;

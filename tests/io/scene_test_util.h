@@ -1,5 +1,6 @@
-// scene_test_util.h — helpers for the scene loader tests: temporary files, loading XML strings,
-// and checking that an error names the right file, line and reason.
+// scene_test_util.h — helpers for the io tests: temporary directories, files written and read
+// back byte for byte, loading XML strings, and checking that an error names the right file, line
+// and reason.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -9,12 +10,26 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <sstream>
 #include <string>
 
 #include "caustica/io/scene_loader.h"
 #include "caustica/util/error.h"
 
 namespace caustica::test {
+
+/// Writes `bytes` to the file at `path` (binary-exact).
+inline void writeBytes(const std::string& path, const std::string& bytes) {
+    std::ofstream(path, std::ios::binary) << bytes;
+}
+
+/// The bytes of the file at `path` (binary-exact; empty when it cannot be read).
+inline std::string readBytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
 
 /// A fresh directory under the system temp dir, removed when the object dies.
 class TempDir {
@@ -36,7 +51,7 @@ public:
         std::filesystem::create_directories(p.parent_path());
         // Removing first is much faster than truncating on ext4 (no flush of the old data).
         std::filesystem::remove(p);
-        std::ofstream(p, std::ios::binary) << content;
+        writeBytes(p.string(), content);
         return p.string();
     }
 

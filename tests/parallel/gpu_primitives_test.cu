@@ -15,19 +15,13 @@
 #include "cuda/cuda_backend.h"
 #include "cuda/cuda_check.h"
 #include "cuda/parallel_for_cuda.h"
+#include "random_inputs.h"
 
 namespace caustica {
 namespace {
 
-const size_t kSizes[] = {0, 1, 1000, 1000000};
-
-std::vector<uint32_t> randomU32(size_t n, uint32_t maxValue, uint64_t seed) {
-    std::mt19937_64 rng(seed);
-    std::uniform_int_distribution<uint32_t> dist(0, maxValue);
-    std::vector<uint32_t> v(n);
-    for (auto& x : v) x = dist(rng);
-    return v;
-}
+using test::kSizes;
+using test::randomU32;
 
 class Gpu : public ::testing::Test {
 protected:
@@ -135,6 +129,14 @@ TEST_F(Gpu, ReductionsMatchCpu) {
         const double sum = reduceSum(cpu, Span<const float>(in));
         EXPECT_NEAR(reduceSum(gpu, d.constSpan()), sum, 1e-9 * (1.0 + 100.0 * double(n)));
         EXPECT_EQ(reduceMax(gpu, d.constSpan()), reduceMax(cpu, Span<const float>(in)));
+    }
+}
+
+TEST_F(Gpu, Uint32SumMatchesCpuExactly) {
+    for (size_t n : kSizes) {
+        auto in = randomU32(n, 0xffffffffu, n + 17);  // a 32-bit accumulator would wrap
+        Buffer<uint32_t> d(gpu, in);
+        EXPECT_EQ(reduceSum(gpu, d.constSpan()), reduceSum(cpu, Span<const uint32_t>(in))) << "n = " << n;
     }
 }
 

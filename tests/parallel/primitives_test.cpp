@@ -15,19 +15,13 @@
 
 #include "caustica/parallel/primitives.h"
 #include "caustica/util/error.h"
+#include "random_inputs.h"
 
 namespace caustica {
 namespace {
 
-const size_t kSizes[] = {0, 1, 1000, 1000000};
-
-std::vector<uint32_t> randomU32(size_t n, uint32_t maxValue, uint64_t seed) {
-    std::mt19937_64 rng(seed);
-    std::uniform_int_distribution<uint32_t> dist(0, maxValue);
-    std::vector<uint32_t> v(n);
-    for (auto& x : v) x = dist(rng);
-    return v;
-}
+using test::kSizes;
+using test::randomU32;
 
 std::vector<uint64_t> randomU64(size_t n, uint64_t seed) {
     std::mt19937_64 rng(seed);
@@ -183,6 +177,18 @@ TEST(Reduce, SumAndMaxMatchSequentialReference) {
               -std::numeric_limits<float>::infinity());
 }
 
+TEST(Reduce, Uint32SumIsExactIn64Bits) {
+    for (size_t n : kSizes) {
+        // Values near 2^32: a 32-bit accumulator would wrap after two of them.
+        auto in = randomU32(n, 0xffffffffu, 43 + n);
+        if (n > 0) in[0] = 0xffffffffu;
+        uint64_t sum = 0;
+        for (uint32_t x : in) sum += x;
+        EXPECT_EQ(reduceSum(Device::cpu(), Span<const uint32_t>(in)), sum) << "n = " << n;
+    }
+    EXPECT_EQ(reduceSum(Device::cpu(), Span<const uint32_t>()), 0u);
+}
+
 struct Results {
     std::vector<uint32_t> scan, sortedValues, compacted;
     std::vector<uint64_t> sortedKeys;
@@ -227,6 +233,7 @@ TEST(Primitives, CudaDeviceWithoutBackendThrows) {
     EXPECT_THROW(exclusiveScan(Device::cuda(), Span<const uint32_t>(v), Span<uint32_t>(v)), Error);
     std::vector<float> f(8, 1.0f);
     EXPECT_THROW(reduceSum(Device::cuda(), Span<const float>(f)), Error);
+    EXPECT_THROW(reduceSum(Device::cuda(), Span<const uint32_t>(v)), Error);
     EXPECT_THROW(Buffer<float>(Device::cuda(), 8), Error);
 }
 

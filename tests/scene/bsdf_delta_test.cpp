@@ -6,7 +6,6 @@
 #include <vector>
 
 #include "caustica/scene/bsdf.h"
-#include "caustica/util/rng.h"
 #include "scene/bsdf_test_util.h"
 #include "scene/chi2.h"
 
@@ -125,10 +124,8 @@ void checkDielectric(Float etaRatio, Vec3f n, double thetaO, uint64_t seed) {
     constexpr int kTrials = 200000;
     int reflections = 0;
     for (int i = 0; i < kTrials; ++i) {
-        IndependentSampler rng(uint64_t(i), 0, seed);
-        const Float uLobe = rng.get1D();
         BsdfSample bs;
-        ASSERT_TRUE(sampleBsdf(bsdfs, 0, si, wo, uLobe, rng.get2D(), bs));
+        ASSERT_TRUE(test::sampleBsdfAt(bsdfs, 0, si, wo, i, seed, bs));
         ASSERT_TRUE(bs.delta);
         const Float cosI = dot(bs.wi, si.ns);
         ASSERT_NEAR(length(bs.wi), 1.0f, 1e-5f);
@@ -213,10 +210,8 @@ TEST(ThinDielectric, LobesAndWeights) {
         constexpr int kTrials = 100000;
         int reflections = 0;
         for (int i = 0; i < kTrials; ++i) {
-            IndependentSampler rng(uint64_t(i), 0, seed);
-            const Float uLobe = rng.get1D();
             BsdfSample bs;
-            ASSERT_TRUE(sampleBsdf(bsdfs, 0, si, wo, uLobe, rng.get2D(), bs));
+            ASSERT_TRUE(test::sampleBsdfAt(bsdfs, 0, si, wo, i, seed, bs));
             ASSERT_TRUE(bs.delta);
             ASSERT_EQ(bs.eta, 1.0f);
             if (dot(bs.wi, si.ns) * cosO > 0) {

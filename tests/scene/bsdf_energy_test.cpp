@@ -224,10 +224,8 @@ TEST(BsdfEnergy, DielectricConservesFlux) {
         Estimate radiance;
         int badFlux = 0;
         for (int i = 0; i < kSamples; ++i) {
-            IndependentSampler rng(uint64_t(i), 0, seed);
-            const Float uLobe = rng.get1D();
             BsdfSample bs;
-            ASSERT_TRUE(sampleBsdf(b, 0, si, wo, uLobe, rng.get2D(), bs));
+            ASSERT_TRUE(test::sampleBsdfAt(b, 0, si, wo, i, seed, bs));
             radiance.add(bs.weight.r);
             if (std::fabs(bs.weight.r * sqr(bs.eta) - 1) > 1e-5f) ++badFlux;
         }

@@ -114,58 +114,35 @@ INSTANTIATE_TEST_SUITE_P(LayeredAndComposite, BsdfMoreChi2, ::testing::ValuesIn(
                              return info.param.name;
                          });
 
-/// eval and pdf of Mitsuba 3.9.1's roughplastic (python: bsdf.eval / bsdf.pdf), directions in
-/// degrees (θ, φ) of si.wi (our wo) and wo (our wi).
-struct MitsubaValue {
-    double thetaO, phiO, thetaI, phiI;
-    Spectrum f;
-    double pdf;
-};
-
-void expectMitsuba(const Bsdf& b, const std::vector<MitsubaValue>& values, double tol) {
-    const std::vector<Bsdf> bsdfs{b};
-    const SurfaceInteraction si = test::surfaceAt({0, 0, 1});
-    const Frame frame(si.ns);
-    for (const MitsubaValue& v : values) {
-        const Vec3f wo = test::directionDeg(frame, v.thetaO, v.phiO);
-        const Vec3f wi = test::directionDeg(frame, v.thetaI, v.phiI);
-        const Spectrum f = evalBsdf(bsdfs, 0, si, wo, wi);
-        for (int c = 0; c < 3; ++c)
-            EXPECT_TRUE(test::relClose(f[c], v.f[c], tol))
-                << "θo " << v.thetaO << " θi " << v.thetaI << ": " << f[c] << " vs " << v.f[c];
-        EXPECT_TRUE(test::relClose(pdfBsdf(bsdfs, 0, si, wo, wi), v.pdf, tol))
-            << "pdf θo " << v.thetaO << " θi " << v.thetaI;
-    }
-}
-
+// eval and pdf of Mitsuba 3.9.1's roughplastic (python: bsdf.eval / bsdf.pdf).
 TEST(RoughPlastic, MatchesMitsubaBeckmannDefault) {
-    expectMitsuba(makeRoughPlastic(MicrofacetType::Beckmann, 0.1f, 1.49f / 1.000277f,
-                                   Spectrum(0.2f, 0.5f, 0.8f), Spectrum(1.f), false),
-                  {{30, 0, 30, 180, {0.4229319f, 0.5036167f, 0.5843015f}, 0.9683276},
-                   {60, 10, 20, 200, {0.05547844f, 0.1386946f, 0.2219107f}, 0.250109},
-                   {5, 0, 70, 90, {0.01841912f, 0.04604779f, 0.07367647f}, 0.1007591},
-                   {80, 45, 80, 225, {17.69018f, 17.69744f, 17.70471f}, 24.12914}},
-                  2e-3);
+    test::expectMatchesMitsuba(makeRoughPlastic(MicrofacetType::Beckmann, 0.1f, 1.49f / 1.000277f,
+                                                Spectrum(0.2f, 0.5f, 0.8f), Spectrum(1.f), false),
+                               {{30, 0, 30, 180, {0.4229319f, 0.5036167f, 0.5843015f}, 0.9683276},
+                                {60, 10, 20, 200, {0.05547844f, 0.1386946f, 0.2219107f}, 0.250109},
+                                {5, 0, 70, 90, {0.01841912f, 0.04604779f, 0.07367647f}, 0.1007591},
+                                {80, 45, 80, 225, {17.69018f, 17.69744f, 17.70471f}, 24.12914}},
+                               2e-3);
 }
 
 TEST(RoughPlastic, MatchesMitsubaGgxNonlinear) {
-    expectMitsuba(makeRoughPlastic(MicrofacetType::GGX, 0.3f, 1.6f / 1.000277f,
-                                   Spectrum(0.9f, 0.4f, 0.1f), Spectrum(0.7f), true),
-                  {{30, 0, 30, 180, {0.1840891f, 0.08467992f, 0.04846443f}, 0.3487576},
-                   {60, 10, 20, 200, {0.1626999f, 0.06107961f, 0.02405856f}, 0.306142},
-                   {5, 0, 70, 90, {0.05272972f, 0.01778988f, 0.005061043f}, 0.1033871},
-                   {80, 45, 80, 225, {0.6666434f, 0.6537853f, 0.649101f}, 1.185215}},
-                  2e-3);
+    test::expectMatchesMitsuba(makeRoughPlastic(MicrofacetType::GGX, 0.3f, 1.6f / 1.000277f,
+                                                Spectrum(0.9f, 0.4f, 0.1f), Spectrum(0.7f), true),
+                               {{30, 0, 30, 180, {0.1840891f, 0.08467992f, 0.04846443f}, 0.3487576},
+                                {60, 10, 20, 200, {0.1626999f, 0.06107961f, 0.02405856f}, 0.306142},
+                                {5, 0, 70, 90, {0.05272972f, 0.01778988f, 0.005061043f}, 0.1033871},
+                                {80, 45, 80, 225, {0.6666434f, 0.6537853f, 0.649101f}, 1.185215}},
+                               2e-3);
 }
 
 TEST(RoughPlastic, MatchesMitsubaRoughWater) {
-    expectMitsuba(makeRoughPlastic(MicrofacetType::Beckmann, 0.6f, 1.49f / 1.333f,
-                                   Spectrum(0.5f), Spectrum(1.f), false),
-                  {{30, 0, 30, 180, Spectrum(0.1183215f), 0.275382},
-                   {60, 10, 20, 200, Spectrum(0.1255265f), 0.3047934},
-                   {5, 0, 70, 90, Spectrum(0.04336639f), 0.1089861},
-                   {80, 45, 80, 225, Spectrum(0.1310844f), 0.2989857}},
-                  2e-3);
+    test::expectMatchesMitsuba(makeRoughPlastic(MicrofacetType::Beckmann, 0.6f, 1.49f / 1.333f,
+                                                Spectrum(0.5f), Spectrum(1.f), false),
+                               {{30, 0, 30, 180, Spectrum(0.1183215f), 0.275382},
+                                {60, 10, 20, 200, Spectrum(0.1255265f), 0.3047934},
+                                {5, 0, 70, 90, Spectrum(0.04336639f), 0.1089861},
+                                {80, 45, 80, 225, Spectrum(0.1310844f), 0.2989857}},
+                               2e-3);
 }
 
 // The check has power: a slightly different IOR moves the values beyond the tolerance.

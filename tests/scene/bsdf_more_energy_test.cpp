@@ -10,7 +10,6 @@
 #include <vector>
 
 #include "caustica/scene/bsdf.h"
-#include "caustica/util/rng.h"
 #include "scene/bsdf_more_util.h"
 #include "scene/bsdf_test_util.h"
 
@@ -29,12 +28,9 @@ Albedo albedo(const std::vector<Bsdf>& bsdfs, uint32_t id, double theta, uint64_
     const Vec3f wo = test::directionDeg(Frame(si.ns), theta, 30);
     double sum = 0, sumSq = 0, maxW = 0;
     for (int i = 0; i < kSamples; ++i) {
-        IndependentSampler rng(uint64_t(i), 0, seed);
-        const Float uLobe = rng.get1D();
-        const Vec2f u = rng.get2D();
         BsdfSample bs;
         double w = 0;
-        if (sampleBsdf(bsdfs, id, si, wo, uLobe, u, bs)) w = bs.weight.g;
+        if (test::sampleBsdfAt(bsdfs, id, si, wo, i, seed, bs)) w = bs.weight.g;
         sum += w;
         sumSq += w * w;
         maxW = std::max(maxW, w);

@@ -8,7 +8,6 @@
 #include <vector>
 
 #include "caustica/scene/bsdf.h"
-#include "caustica/util/rng.h"
 #include "scene/bsdf_test_util.h"
 #include "scene/chi2.h"
 
@@ -55,67 +54,47 @@ Bsdf setD() {
     return principled(Spectrum(0.2f, 0.6f, 0.3f), p);
 }
 
-struct MitsubaValue {
-    double thetaO, phiO, thetaI, phiI;
-    Spectrum f;
-    double pdf;
-};
-
-void expectMitsuba(const Bsdf& b, const std::vector<MitsubaValue>& values, double tol = 1e-3) {
-    const std::vector<Bsdf> bsdfs{b};
-    const SurfaceInteraction si = test::surfaceAt({0, 0, 1});
-    const Frame frame(si.ns);
-    for (const MitsubaValue& v : values) {
-        const Vec3f wo = test::directionDeg(frame, v.thetaO, v.phiO);
-        const Vec3f wi = test::directionDeg(frame, v.thetaI, v.phiI);
-        const Spectrum f = evalBsdf(bsdfs, 0, si, wo, wi);
-        for (int c = 0; c < 3; ++c)
-            EXPECT_TRUE(test::relClose(f[c], v.f[c], tol, 1e-6))
-                << "θo " << v.thetaO << " θi " << v.thetaI << ": " << f[c] << " vs " << v.f[c];
-        EXPECT_TRUE(test::relClose(pdfBsdf(bsdfs, 0, si, wo, wi), v.pdf, tol, 1e-6))
-            << "pdf θo " << v.thetaO << " θi " << v.thetaI << ": "
-            << pdfBsdf(bsdfs, 0, si, wo, wi) << " vs " << v.pdf;
-    }
-}
-
 TEST(Principled, MatchesMitsubaAllReflectionLobes) {
-    expectMitsuba(setA(), {{30, 0, 30, 180, {1.428778f, 0.7380742f, 0.5999335f}, 3.170495},
-                           {60, 10, 20, 200, {0.3128086f, 0.1258125f, 0.08841332f}, 0.3897664},
-                           {5, 0, 70, 90, {0.0630339f, 0.02387845f, 0.01604735f}, 0.0468683},
-                           {80, 45, 75, 225, {5.886995f, 4.502602f, 4.225723f}, 8.353796},
-                           {40, 20, 150, 190, Spectrum(0.f), 0},
-                           {140, 0, 30, 170, Spectrum(0.f), 0},
-                           {160, 30, 150, 200, Spectrum(0.f), 2.342063},
-                           {20, 0, 25, 160, {0.6464995f, 0.282031f, 0.2091373f}, 1.090711}});
+    test::expectMatchesMitsuba(setA(),
+                               {{30, 0, 30, 180, {1.428778f, 0.7380742f, 0.5999335f}, 3.170495},
+                                {60, 10, 20, 200, {0.3128086f, 0.1258125f, 0.08841332f}, 0.3897664},
+                                {5, 0, 70, 90, {0.0630339f, 0.02387845f, 0.01604735f}, 0.0468683},
+                                {80, 45, 75, 225, {5.886995f, 4.502602f, 4.225723f}, 8.353796},
+                                {40, 20, 150, 190, Spectrum(0.f), 0},
+                                {140, 0, 30, 170, Spectrum(0.f), 0},
+                                {160, 30, 150, 200, Spectrum(0.f), 2.342063},
+                                {20, 0, 25, 160, {0.6464995f, 0.282031f, 0.2091373f}, 1.090711}});
 }
 
 TEST(Principled, MatchesMitsubaTransmission) {
-    expectMitsuba(setB(), {{30, 0, 30, 180, {0.4725645f, 0.4725645f, 0.4477548f}, 2.894272},
-                           {60, 10, 20, 200, {0.08346475f, 0.08346475f, 0.05666784f}, 0.08887947},
-                           {5, 0, 70, 90, {0.02924467f, 0.02924467f, 0.01956467f}, 0.0265458},
-                           {80, 45, 75, 225, {10.32584f, 10.32584f, 10.32042f}, 13.81417},
-                           {40, 20, 150, 190, {0.8136519f, 0.8136519f, 0.664344f}, 1.388043},
-                           {140, 0, 30, 170, {0.0220626f, 0.0220626f, 0.01801403f}, 0.01581227},
-                           {160, 30, 150, 200, Spectrum(0.06124403f), 0.08755048},
-                           {20, 0, 25, 160, {0.1815804f, 0.1815804f, 0.1556166f}, 0.8241937}});
+    test::expectMatchesMitsuba(
+        setB(), {{30, 0, 30, 180, {0.4725645f, 0.4725645f, 0.4477548f}, 2.894272},
+                 {60, 10, 20, 200, {0.08346475f, 0.08346475f, 0.05666784f}, 0.08887947},
+                 {5, 0, 70, 90, {0.02924467f, 0.02924467f, 0.01956467f}, 0.0265458},
+                 {80, 45, 75, 225, {10.32584f, 10.32584f, 10.32042f}, 13.81417},
+                 {40, 20, 150, 190, {0.8136519f, 0.8136519f, 0.664344f}, 1.388043},
+                 {140, 0, 30, 170, {0.0220626f, 0.0220626f, 0.01801403f}, 0.01581227},
+                 {160, 30, 150, 200, Spectrum(0.06124403f), 0.08755048},
+                 {20, 0, 25, 160, {0.1815804f, 0.1815804f, 0.1556166f}, 0.8241937}});
 }
 
 TEST(Principled, MatchesMitsubaDefaults) {
     PrincipledParams p;  // roughness 0.5, specular 0.5 (eta 1.5), base 0.5
-    expectMitsuba(principled(Spectrum(0.5f), p),
-                  {{30, 0, 30, 180, Spectrum(0.1982544f), 0.8691483},
-                   {60, 10, 20, 200, Spectrum(0.1640797f), 0.3044048},
-                   {5, 0, 70, 90, Spectrum(0.05696792f), 0.0722897},
-                   {80, 45, 75, 225, Spectrum(1.366188f), 2.57539},
-                   {160, 30, 150, 200, Spectrum(0.f), 1.04512},
-                   {20, 0, 25, 160, Spectrum(0.1888738f), 0.6983424}});
+    test::expectMatchesMitsuba(principled(Spectrum(0.5f), p),
+                               {{30, 0, 30, 180, Spectrum(0.1982544f), 0.8691483},
+                                {60, 10, 20, 200, Spectrum(0.1640797f), 0.3044048},
+                                {5, 0, 70, 90, Spectrum(0.05696792f), 0.0722897},
+                                {80, 45, 75, 225, Spectrum(1.366188f), 2.57539},
+                                {160, 30, 150, 200, Spectrum(0.f), 1.04512},
+                                {20, 0, 25, 160, Spectrum(0.1888738f), 0.6983424}});
 }
 
 TEST(Principled, MatchesMitsubaFlatness) {
-    expectMitsuba(setD(), {{30, 0, 30, 180, {0.06274726f, 0.1576713f, 0.08647827f}, 0.3255035},
-                           {60, 10, 20, 200, {0.06967191f, 0.1817749f, 0.09769765f}, 0.2999367},
-                           {5, 0, 70, 90, {0.023968f, 0.06681705f, 0.03468026f}, 0.09395315},
-                           {80, 45, 75, 225, {0.2135182f, 0.2545519f, 0.2237767f}, 0.5182208}});
+    test::expectMatchesMitsuba(
+        setD(), {{30, 0, 30, 180, {0.06274726f, 0.1576713f, 0.08647827f}, 0.3255035},
+                 {60, 10, 20, 200, {0.06967191f, 0.1817749f, 0.09769765f}, 0.2999367},
+                 {5, 0, 70, 90, {0.023968f, 0.06681705f, 0.03468026f}, 0.09395315},
+                 {80, 45, 75, 225, {0.2135182f, 0.2545519f, 0.2237767f}, 0.5182208}});
 }
 
 /// Set E: a rough sheen-dominated material (sheen 0.8, sheen_tint 0.6, roughness 0.9), seen at
@@ -129,9 +108,10 @@ Bsdf setE(Float sheen = 0.8f) {
 }
 
 TEST(Principled, MatchesMitsubaSheen) {
-    expectMitsuba(setE(), {{80, 0, 80, 100, {0.02297925f, 0.03667549f, 0.05037173f}, 0.08300696},
-                           {75, 0, 85, 150, {0.01948969f, 0.02637684f, 0.033264f}, 0.07457097},
-                           {60, 0, 70, 120, {0.03922601f, 0.06219957f, 0.08517314f}, 0.1087262}});
+    test::expectMatchesMitsuba(
+        setE(), {{80, 0, 80, 100, {0.02297925f, 0.03667549f, 0.05037173f}, 0.08300696},
+                 {75, 0, 85, 150, {0.01948969f, 0.02637684f, 0.033264f}, 0.07457097},
+                 {60, 0, 70, 120, {0.03922601f, 0.06219957f, 0.08517314f}, 0.1087262}});
 }
 
 // The comparison has power: sheen 0.8 -> 0.85 moves the value beyond the tolerance (Mitsuba:
@@ -158,11 +138,8 @@ void runChi2(const std::string& name, const Bsdf& b, double thetaO, double phiO,
     grid.nPhi = 256;
     int bad = 0;
     auto sample = [&](int i, Vec3f& w) {
-        IndependentSampler rng(uint64_t(i), 0, seed);
-        const Float uLobe = rng.get1D();
-        const Vec2f u = rng.get2D();
         BsdfSample bs;
-        if (!sampleBsdf(bsdfs, 0, si, wo, uLobe, u, bs)) return false;
+        if (!test::sampleBsdfAt(bsdfs, 0, si, wo, i, seed, bs)) return false;
         const Spectrum f = evalBsdf(bsdfs, 0, si, wo, bs.wi);
         const Float pdf = pdfBsdf(bsdfs, 0, si, wo, bs.wi);
         if (bs.delta || !test::relClose(bs.pdf, pdf) ||
@@ -205,11 +182,8 @@ TEST(Principled, AlbedoMatchesMitsuba) {
         double sum = 0, sumSq = 0;
         const int n = 200000;
         for (int i = 0; i < n; ++i) {
-            IndependentSampler rng(uint64_t(i), 0, 77);
-            const Float uLobe = rng.get1D();
-            const Vec2f u = rng.get2D();
             BsdfSample bs;
-            const double w = sampleBsdf(bsdfs, 0, si, wo, uLobe, u, bs) ? bs.weight.g : 0;
+            const double w = test::sampleBsdfAt(bsdfs, 0, si, wo, i, 77, bs) ? bs.weight.g : 0;
             sum += w;
             sumSq += w * w;
         }

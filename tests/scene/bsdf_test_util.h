@@ -1,6 +1,8 @@
-// bsdf_test_util.h — small builders and the χ² sampling harness shared by the BSDF tests (test
-// helper, host only).
+// bsdf_test_util.h — small builders, the comparison with Mitsuba's values and the χ² sampling
+// harness shared by the BSDF tests (test helper, host only).
 #pragma once
+
+#include <gtest/gtest.h>
 
 #include <cmath>
 #include <functional>
@@ -112,6 +114,34 @@ inline uint32_t addTwoSided(std::vector<Bsdf>& bsdfs, const Bsdf& front, const B
 /// |a - b| within a relative tolerance (with a tiny absolute floor for values near zero).
 inline bool relClose(double a, double b, double rel = 1e-3, double absFloor = 1e-6) {
     return std::fabs(a - b) <= rel * std::max(std::fabs(a), std::fabs(b)) + absFloor;
+}
+
+/// A value of Mitsuba's eval and pdf (python: bsdf.eval / bsdf.pdf), directions in degrees (θ, φ)
+/// of si.wi (our wo) and wo (our wi).
+struct MitsubaValue {
+    double thetaO, phiO, thetaI, phiI;
+    Spectrum f;
+    double pdf;
+};
+
+/// Checks evalBsdf and pdfBsdf of `b` (at a surface with normal +z) against Mitsuba's `values`
+/// within the relative tolerance `tol` (relClose).
+inline void expectMatchesMitsuba(const Bsdf& b, const std::vector<MitsubaValue>& values,
+                                 double tol = 1e-3) {
+    const std::vector<Bsdf> bsdfs{b};
+    const SurfaceInteraction si = surfaceAt({0, 0, 1});
+    const Frame frame(si.ns);
+    for (const MitsubaValue& v : values) {
+        const Vec3f wo = directionDeg(frame, v.thetaO, v.phiO);
+        const Vec3f wi = directionDeg(frame, v.thetaI, v.phiI);
+        const Spectrum f = evalBsdf(bsdfs, 0, si, wo, wi);
+        for (int c = 0; c < 3; ++c)
+            EXPECT_TRUE(relClose(f[c], v.f[c], tol))
+                << "θo " << v.thetaO << " θi " << v.thetaI << ": " << f[c] << " vs " << v.f[c];
+        const Float pdf = pdfBsdf(bsdfs, 0, si, wo, wi);
+        EXPECT_TRUE(relClose(pdf, v.pdf, tol))
+            << "pdf θo " << v.thetaO << " θi " << v.thetaI << ": " << pdf << " vs " << v.pdf;
+    }
 }
 
 /// Samples per BSDF χ² test.

@@ -6,7 +6,6 @@
 #include <string>
 #include <vector>
 
-#include "accel/cylinder_reference.h"
 #include "caustica/scene/light.h"
 #include "caustica/util/rng.h"
 #include "scene/bsdf_test_util.h"

@@ -1,4 +1,5 @@
-// scene_builder.h — builds small scenes for the scene-layer tests (test helper, host only).
+// scene_builder.h — builds small scenes (meshes, spheres, cylinders, lights) for the scene,
+// accel and integrator tests (test helper, host only).
 #pragma once
 
 #include <vector>
@@ -33,16 +34,42 @@ inline uint32_t addMesh(Scene& scene, const std::vector<Vec3f>& positions,
     return shapeId;
 }
 
-inline uint32_t addSphere(Scene& scene, Vec3f center, Float radius, bool flipNormals = false) {
+/// Appends a shape of the one primitive `prim` (a Sphere or a Cylinder, stored in `prims`) and
+/// returns its shape index.
+template <class Prim>
+inline uint32_t addPrimitiveShape(Scene& scene, ShapeType type, std::vector<Prim>& prims,
+                                  const Prim& prim, bool flipNormals) {
     const uint32_t shapeId = uint32_t(scene.shapes.size());
-    Shape shape;
-    shape.type = ShapeType::Sphere;
-    shape.primOffset = uint32_t(scene.spheres.size());
-    shape.primCount = 1;
+    Shape shape = appendPrimitiveShape(type, prims, prim, shapeId);
     shape.flipNormals = flipNormals;
-    scene.spheres.push_back(Sphere{center, radius, shapeId});
     scene.shapes.push_back(shape);
     return shapeId;
+}
+
+/// Appends a sphere shape of one sphere and returns its shape index.
+inline uint32_t addSphere(Scene& scene, Vec3f center, Float radius, bool flipNormals = false) {
+    return addPrimitiveShape(scene, ShapeType::Sphere, scene.spheres, Sphere{center, radius},
+                             flipNormals);
+}
+
+/// An open cylinder record (Frame's tangent of the axis as xAxis), owned by shape `shape`.
+inline Cylinder makeCylinder(Vec3f base, Vec3f axis, Float radius, Float length,
+                             uint32_t shape = 0) {
+    Cylinder c;
+    c.base = base;
+    c.axis = normalize(axis);
+    c.xAxis = Frame(c.axis).s;
+    c.radius = radius;
+    c.length = length;
+    c.shape = shape;
+    return c;
+}
+
+/// Appends a cylinder shape of one cylinder and returns its shape index.
+inline uint32_t addCylinder(Scene& scene, Vec3f base, Vec3f axis, Float radius, Float length,
+                            bool flipNormals = false) {
+    return addPrimitiveShape(scene, ShapeType::Cylinder, scene.cylinders,
+                             makeCylinder(base, axis, radius, length), flipNormals);
 }
 
 inline uint32_t addAreaLight(Scene& scene, uint32_t shape, Spectrum radiance) {

@@ -9,6 +9,7 @@
 #include <ostream>
 #include <string>
 
+#include "caustica/util/binary_io.h"
 #include "caustica/util/error.h"
 
 namespace caustica {
@@ -26,84 +27,6 @@ std::string sizeString(int w, int h) {
 //   f64[4 * pixels] sums (r, g, b, w per pixel) | u64 FNV-1a hash of every preceding byte
 constexpr char kMagic[8] = {'C', 'A', 'F', 'I', 'L', 'M', '\r', '\n'};
 constexpr uint32_t kVersion = 1;
-
-struct Fnv1a {
-    uint64_t h = 0xcbf29ce484222325ull;
-    void add(const unsigned char* p, size_t n) {
-        for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 0x100000001b3ull;
-    }
-};
-
-class Writer {
-public:
-    explicit Writer(std::ostream& out) : out_(out) {}
-    void bytes(const void* p, size_t n) {
-        hash_.add(static_cast<const unsigned char*>(p), n);
-        out_.write(static_cast<const char*>(p), std::streamsize(n));
-    }
-    /// An unsigned integer, little-endian.
-    template <class T>
-    void uint(T v) {
-        unsigned char b[sizeof(T)];
-        for (size_t i = 0; i < sizeof(T); ++i) b[i] = static_cast<unsigned char>(v >> (8 * i));
-        bytes(b, sizeof(T));
-    }
-    void u64(uint64_t v) { uint(v); }
-    void u32(uint32_t v) { uint(v); }
-    void f32(float v) {
-        uint32_t u;
-        std::memcpy(&u, &v, 4);
-        u32(u);
-    }
-    void f64(double v) {
-        uint64_t u;
-        std::memcpy(&u, &v, 8);
-        u64(u);
-    }
-    uint64_t hash() const { return hash_.h; }
-
-private:
-    std::ostream& out_;
-    Fnv1a hash_;
-};
-
-class Reader {
-public:
-    explicit Reader(std::istream& in) : in_(in) {}
-    void bytes(void* p, size_t n) {
-        if (!in_.read(static_cast<char*>(p), std::streamsize(n)))
-            throw Error("film checkpoint: truncated data");
-        hash_.add(static_cast<const unsigned char*>(p), n);
-    }
-    /// An unsigned integer, little-endian.
-    template <class T>
-    T uint() {
-        unsigned char b[sizeof(T)];
-        bytes(b, sizeof(T));
-        T v = 0;
-        for (size_t i = 0; i < sizeof(T); ++i) v |= T(b[i]) << (8 * i);
-        return v;
-    }
-    uint64_t u64() { return uint<uint64_t>(); }
-    uint32_t u32() { return uint<uint32_t>(); }
-    float f32() {
-        uint32_t u = u32();
-        float v;
-        std::memcpy(&v, &u, 4);
-        return v;
-    }
-    double f64() {
-        uint64_t u = u64();
-        double v;
-        std::memcpy(&v, &u, 8);
-        return v;
-    }
-    uint64_t hash() const { return hash_.h; }
-
-private:
-    std::istream& in_;
-    Fnv1a hash_;
-};
 
 }  // namespace
 
@@ -197,7 +120,7 @@ void Film::reset() {
 }
 
 void Film::save(std::ostream& out) const {
-    Writer w(out);
+    BinaryWriter w(out, "film checkpoint");
     w.bytes(kMagic, sizeof(kMagic));
     w.u32(kVersion);
     w.u32(uint32_t(width_));
@@ -220,7 +143,7 @@ void Film::save(std::ostream& out) const {
 }
 
 void Film::load(std::istream& in) {
-    Reader r(in);
+    BinaryReader r(in, "film checkpoint");
     char magic[8];
     r.bytes(magic, sizeof(magic));
     if (std::memcmp(magic, kMagic, sizeof(kMagic)) != 0)

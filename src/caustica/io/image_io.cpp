@@ -395,6 +395,18 @@ void writePng(const std::string& path, const Image& image, const ImageMetadata& 
     if (!out) throw Error(path, 0, "write error");
 }
 
+/// The w x h image of stb's interleaved RGB samples `pixels` (8 or 16 bits), scaled to [0, 1] by
+/// `maxValue` and decoded from sRGB to linear unless `raw`.
+template <class T>
+Image imageFromStb(const T* pixels, int w, int h, float maxValue, bool raw) {
+    Image image(w, h);
+    for (size_t i = 0; i < image.rgb.size(); ++i) {
+        const float v = float(pixels[i]) / maxValue;
+        image.rgb[i] = raw ? v : srgbToLinear(v);
+    }
+    return image;
+}
+
 /// PNG or JPEG (8 or 16 bits per channel, sRGB-encoded) via stb; decoded to linear unless
 /// `raw`. `magic` is the signature the format requires.
 Image readLdr(const std::string& path, const ImageReadOptions& options, ImageFileInfo* info,
@@ -415,21 +427,13 @@ Image readLdr(const std::string& path, const ImageReadOptions& options, ImageFil
         std::unique_ptr<stbi_us, void (*)(void*)> p(
             stbi_load_16_from_memory(data.data(), size, &w, &h, &n, 3), stbi_image_free);
         if (!p) throw Error(path, 0, std::string("corrupt or truncated data: ") + stbReason());
-        image = Image(w, h);
-        for (size_t i = 0; i < image.rgb.size(); ++i) {
-            const float v = float(p.get()[i]) / 65535.0f;
-            image.rgb[i] = options.raw ? v : srgbToLinear(v);
-        }
+        image = imageFromStb(p.get(), w, h, 65535.0f, options.raw);
         if (info) info->bitsPerChannel = 16;
     } else {
         std::unique_ptr<stbi_uc, void (*)(void*)> p(
             stbi_load_from_memory(data.data(), size, &w, &h, &n, 3), stbi_image_free);
         if (!p) throw Error(path, 0, std::string("corrupt or truncated data: ") + stbReason());
-        image = Image(w, h);
-        for (size_t i = 0; i < image.rgb.size(); ++i) {
-            const float v = float(p.get()[i]) / 255.0f;
-            image.rgb[i] = options.raw ? v : srgbToLinear(v);
-        }
+        image = imageFromStb(p.get(), w, h, 255.0f, options.raw);
         if (info) info->bitsPerChannel = 8;
     }
     if (info) info->channels = n;

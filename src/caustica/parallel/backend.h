@@ -32,6 +32,7 @@ struct GpuBackend {
     uint32_t (*compactIndices)(const uint32_t* flags, uint32_t* out, size_t n) = nullptr;
     double (*reduceSum)(const float* in, size_t n) = nullptr;
     float (*reduceMax)(const float* in, size_t n) = nullptr;
+    uint64_t (*reduceSumU32)(const uint32_t* in, size_t n) = nullptr;  // in 64 bits
 };
 
 /// Installs (or with nullptr removes) the GPU backend. The table must outlive its use.

@@ -162,6 +162,18 @@ double sumCpu(Span<const float> in) {
     return total;
 }
 
+uint64_t sumCpu(Span<const uint32_t> in) {
+    std::vector<uint64_t> partial(blockCount(in.size()));
+    forEachBlock(in.size(), [&](size_t b, size_t begin, size_t end) {
+        uint64_t s = 0;
+        for (size_t i = begin; i < end; ++i) s += in[i];
+        partial[b] = s;
+    });
+    uint64_t total = 0;
+    for (uint64_t p : partial) total += p;
+    return total;
+}
+
 Float maxCpu(Span<const float> in) {
     std::vector<float> partial(blockCount(in.size()));
     forEachBlock(in.size(), [&](size_t b, size_t begin, size_t end) {
@@ -210,6 +222,14 @@ double reduceSum(const Device& device, Span<const float> in) {
     if (in.empty()) return 0.0;
     if (device.isCpu()) return sumCpu(in);
     return requireGpuBackend("reduceSum").reduceSum(in.data(), in.size());
+}
+
+uint64_t reduceSum(const Device& device, Span<const uint32_t> in) {
+    if (in.empty()) return 0;
+    if (device.isCpu()) return sumCpu(in);
+    const GpuBackend& backend = requireGpuBackend("reduceSum");
+    if (!backend.reduceSumU32) throw Error("reduceSum: the GPU backend has no 32-bit integer sum");
+    return backend.reduceSumU32(in.data(), in.size());
 }
 
 Float reduceMax(const Device& device, Span<const float> in) {

@@ -43,6 +43,9 @@ uint32_t compactIndices(const Device& device, Span<const uint32_t> flags,
 /// The sum of `in`, accumulated in double (0 when empty). The CPU sums fixed blocks, so the
 /// result is reproducible; the GPU agrees up to rounding.
 double reduceSum(const Device& device, Span<const float> in);
+/// The sum of `in` in 64 bits (0 when empty): exact, so CPU and GPU agree bit for bit (counters
+/// such as rays or accepted moves; CUB DeviceReduce on the GPU).
+uint64_t reduceSum(const Device& device, Span<const uint32_t> in);
 
 /// The largest element of `in` (-infinity when empty; NaNs give an unspecified result).
 Float reduceMax(const Device& device, Span<const float> in);

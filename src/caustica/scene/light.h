@@ -62,6 +62,23 @@ CA_HD_INLINE void sampleSphereCone(const Sphere& s, Vec3f refP, Float omc, Float
     p = s.center + outward * s.radius;
 }
 
+/// The point and spot lights' sample: the light's position `pos` as seen from `refP` (p, dist,
+/// wi, pdf = selection pdf `selPdf`, delta) and the 1 / d² that scales its intensity into `Le`.
+/// Returns false when refP is at `pos` (no direction).
+CA_HD_INLINE bool sampleDeltaPosition(Vec3f pos, Vec3f refP, Float selPdf, LightSample& out,
+                                      Float& invDist2) {
+    const Vec3f d = pos - refP;
+    const Float d2 = lengthSquared(d);
+    if (!(d2 > 0)) return false;
+    out.p = pos;
+    out.dist = std::sqrt(d2);
+    out.wi = d * (1 / out.dist);
+    out.pdf = selPdf;
+    out.delta = true;
+    invDist2 = 1 / d2;
+    return true;
+}
+
 /// Solid-angle pdf of a point `p` with front normal `n` sampled uniformly by area on a surface of
 /// total area `area` (dω = |cosθ| dA / r²); 0 when p faces away from ref.
 CA_HD_INLINE Float areaToSolidAngle(Vec3f refP, Vec3f p, Vec3f n, Float area) {
@@ -90,15 +107,10 @@ CA_HD_INLINE bool sampleLight(const SceneView& scene, Vec3f refP, Float uSelect,
 
     switch (light.type) {
         case LightType::Point: {
-            const Vec3f d = light.position - refP;
-            const Float d2 = lengthSquared(d);
-            if (!(d2 > 0)) return false;
-            out.p = light.position;
-            out.dist = std::sqrt(d2);
-            out.wi = d * (1 / out.dist);
-            out.Le = light.radiance * (1 / d2);
-            out.pdf = selPdf;
-            out.delta = true;
+            Float invDist2 = 0;
+            if (!light_detail::sampleDeltaPosition(light.position, refP, selPdf, out, invDist2))
+                return false;
+            out.Le = light.radiance * invDist2;
             return true;
         }
         case LightType::Constant: {
@@ -110,15 +122,10 @@ CA_HD_INLINE bool sampleLight(const SceneView& scene, Vec3f refP, Float uSelect,
             return true;
         }
         case LightType::Spot: {  // light_delta.h
-            const Vec3f d = light.position - refP;
-            const Float d2 = lengthSquared(d);
-            if (!(d2 > 0)) return false;
-            out.p = light.position;
-            out.dist = std::sqrt(d2);
-            out.wi = d * (1 / out.dist);
-            out.Le = spotIntensity(light, scene.textureView(), -out.wi) * (1 / d2);
-            out.pdf = selPdf;
-            out.delta = true;
+            Float invDist2 = 0;
+            if (!light_detail::sampleDeltaPosition(light.position, refP, selPdf, out, invDist2))
+                return false;
+            out.Le = spotIntensity(light, scene.textureView(), -out.wi) * invDist2;
             return !out.Le.isBlack();
         }
         case LightType::Directional: {  // light_delta.h; Mitsuba's point 2 radii away

@@ -161,4 +161,18 @@ struct Scene {
     Bounds3f primitiveBounds(uint32_t primId) const;
 };
 
+/// Appends `prim` (a Sphere or a Cylinder) to `prims` as the one primitive of shape `shapeIndex`
+/// and returns that shape's record (type, primOffset, primCount = 1; the caller sets the rest).
+template <class Prim>
+Shape appendPrimitiveShape(ShapeType type, std::vector<Prim>& prims, Prim prim,
+                           uint32_t shapeIndex) {
+    Shape s;
+    s.type = type;
+    s.primOffset = uint32_t(prims.size());
+    s.primCount = 1;
+    prim.shape = shapeIndex;
+    prims.push_back(prim);
+    return s;
+}
+
 }  // namespace caustica

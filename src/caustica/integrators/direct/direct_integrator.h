@@ -1,6 +1,7 @@
 // direct_integrator.h — host driver of the direct-illumination integrator (direct_kernel.h) on
 // the CPU: one pass = K samples per pixel, each pixel a work item of parallelFor; random streams
-// keyed by (pixel, sample index, seed) as the path tracer's, so images do not depend on threads.
+// keyed by (pixel, sample index, seed) as the path tracer's, so images do not depend on threads
+// (the pass loop both share: integrators/pixel_pass.h).
 #pragma once
 
 #include <cstdint>

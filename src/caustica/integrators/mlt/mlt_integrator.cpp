@@ -3,14 +3,19 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
+#include <istream>
 #include <numeric>
+#include <ostream>
 #include <vector>
 
 #include "caustica/film/filter.h"
+#include "caustica/integrators/mlt/mlt_impl.h"
 #include "caustica/integrators/mlt/mlt_kernel.h"
 #include "caustica/parallel/buffer.h"
 #include "caustica/parallel/device.h"
 #include "caustica/parallel/primitives.h"
+#include "caustica/util/binary_io.h"
 #include "caustica/util/error.h"
 
 namespace caustica {
@@ -46,10 +51,56 @@ size_t mltBytesPerChain(MltStateKind kind, uint32_t storedBounces) {
     return samples + sizeof(Vec2f) + sizeof(Spectrum) + sizeof(float) + sizeof(uint16_t);
 }
 
-namespace {
+void MltRenderer::Impl::save(std::ostream&) const {
+    throw Error("this MLT driver keeps no resumable checkpoint");
+}
+void MltRenderer::Impl::load(std::istream&) { throw Error("this MLT driver keeps no resumable checkpoint"); }
 
-using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+void validateMltSettings(const MltSettings& s) {
+    if (s.chains == 0) throw Error("MLT needs at least one chain");
+    if (s.proposals == 0 || s.proposals > 64) throw Error("MLT proposals per step must be in 1..64");
+    if (!(s.largeStepProbability >= 0 && s.largeStepProbability <= 1))
+        throw Error("MLT large-step probability must be in [0, 1]");
+    if (!(s.mutation.s1 > 0 && s.mutation.s2 >= s.mutation.s1 && s.mutation.s2 < 1))
+        throw Error("MLT small-step sizes must satisfy 0 < s1 <= s2 < 1");
+}
+
+MltStepParams mltStepParams(const Scene& scene, const PathSettings& path, const MltSettings& s, uint64_t seed) {
+    MltStepParams p;
+    p.seed = seed;
+    p.proposals = s.proposals;
+    p.largeStepProbability = s.largeStepProbability;
+    p.mutation = s.mutation;
+    p.path = path;
+    p.width = scene.film.width;
+    p.height = scene.film.height;
+    return p;
+}
+
+uint64_t mltBootstrapCount(const MltSettings& s, uint32_t pixels) {
+    return s.bootstrapSamples > 0 ? s.bootstrapSamples : mltDefaultBootstrapSamples(s.chains, pixels);
+}
+
+std::vector<uint64_t> mltChainStarts(const float* importance, uint64_t m, uint32_t n, MltStart start,
+                                     uint64_t seed) {
+    std::vector<uint64_t> starts(n);
+    if (start == MltStart::Uniform) {
+        for (uint32_t c = 0; c < n; ++c) starts[c] = c % m;  // ordinary samples, I may be 0
+        return starts;
+    }
+    std::vector<double> cdf(m);
+    double acc = 0;
+    for (uint64_t i = 0; i < m; ++i) cdf[i] = (acc += double(importance[i]));
+    const double offset = double(uniformFloat(mix64(mltBootstrapKey(seed, ~uint64_t(0)))));
+    for (uint32_t c = 0; c < n; ++c) {
+        const double target = (double(c) + offset) / double(n) * acc;
+        const auto it = std::upper_bound(cdf.begin(), cdf.end(), target);
+        starts[c] = std::min<uint64_t>(uint64_t(it - cdf.begin()), m - 1);
+    }
+    return starts;
+}
+
+namespace {
 
 /// Fraction of a filter's integral that falls inside [0, size) around each pixel centre, one
 /// axis: the splat sums of border pixels are divided by it (the path tracer's film normalises by
@@ -69,44 +120,47 @@ std::vector<double> borderCoverage(const Filter& filter, int size) {
     return coverage;
 }
 
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
 }  // namespace
 
-struct MltRenderer::Impl {
-    virtual ~Impl() = default;
-    virtual void bootstrap() = 0;
-    virtual uint64_t iterate() = 0;
-    virtual Image develop() const = 0;
-    MltStats stats;
-    MltSettings settings;
-    uint32_t pixels = 0;
-};
+MltFilm::MltFilm(const FilterDesc& filter, int width, int height)
+    : filter_(Filter::fromDesc(filter)),
+      width_(width),
+      height_(height),
+      coverageX_(borderCoverage(filter_, width)),
+      coverageY_(borderCoverage(filter_, height)) {}
+
+Image MltFilm::develop(const double* sums, double totalWeight) const {
+    Image out(width_, height_);
+    if (totalWeight == 0) return out;
+    const double integral = filter_.integral();
+    const double scale = double(width_) * double(height_) / totalWeight / (integral * integral);
+    for (int y = 0; y < height_; ++y)
+        for (int x = 0; x < width_; ++x) {
+            const size_t pixel = size_t(y) * size_t(width_) + size_t(x);
+            const double s = scale / (coverageX_[size_t(x)] * coverageY_[size_t(y)]);
+            for (int c = 0; c < 3; ++c) out.rgb[3 * pixel + size_t(c)] = float(sums[3 * pixel + size_t(c)] * s);
+        }
+    return out;
+}
 
 namespace {
+
+constexpr char kMltCheckpointMagic[8] = {'C', 'A', 'M', 'L', 'T', 'C', 'K', '1'};
+constexpr uint32_t kMltCheckpointVersion = 1;
 
 template <class Store>
 class MltImpl final : public MltRenderer::Impl {
 public:
     MltImpl(const Scene& scene, const Accel& accel, const PathSettings& path, const MltSettings& s, uint64_t seed)
-        : scene_(scene), accel_(accel), device_(Device::cpu()) {
+        : scene_(scene), accel_(accel), device_(Device::cpu()), film_(scene.film.filter, scene.film.width, scene.film.height) {
+        validateMltSettings(s);
         settings = s;
-        if (s.chains == 0) throw Error("MLT needs at least one chain");
-        if (s.proposals == 0 || s.proposals > 64) throw Error("MLT proposals per step must be in 1..64");
-        if (!(s.largeStepProbability >= 0 && s.largeStepProbability <= 1))
-            throw Error("MLT large-step probability must be in [0, 1]");
-        if (!(s.mutation.s1 > 0 && s.mutation.s2 >= s.mutation.s1 && s.mutation.s2 < 1))
-            throw Error("MLT small-step sizes must satisfy 0 < s1 <= s2 < 1");
-        params_.seed = seed;
-        params_.proposals = s.proposals;
-        params_.largeStepProbability = s.largeStepProbability;
-        params_.mutation = s.mutation;
-        params_.path = path;
-        params_.width = scene.film.width;
-        params_.height = scene.film.height;
+        params_ = mltStepParams(scene, path, s, seed);
         pixels_ = uint32_t(params_.width) * uint32_t(params_.height);
         pixels = pixels_;
-        filter_ = Filter::fromDesc(scene.film.filter);
-        coverageX_ = borderCoverage(filter_, params_.width);
-        coverageY_ = borderCoverage(filter_, params_.height);
 
         const uint32_t n = s.chains, k = s.proposals;
         const uint32_t bounces = mltStoredBounces(path);
@@ -147,8 +201,7 @@ public:
     void bootstrap() override {
         const auto t0 = Clock::now();
         const uint32_t n = settings.chains;
-        const uint64_t m = settings.bootstrapSamples > 0 ? settings.bootstrapSamples
-                                                         : mltDefaultBootstrapSamples(n, pixels_);
+        const uint64_t m = mltBootstrapCount(settings, pixels_);
         Buffer<float> importance(device_, m);
         Buffer<uint32_t> pixelOf(device_, m), rays(device_, m);
         Span<float> I = importance.span();
@@ -172,29 +225,12 @@ public:
         // b = E[I]: the bootstrap mean (refined later by the large steps).
         const double sum = reduceSum(device_, asConst(I));
         stats.bootstrapSamples = m;
-        bSum_ = sum;
-        bCount_ = double(m);
-        stats.b = sum / double(m);
+        b_.add(sum, double(m));
+        stats.b = b_.b();
         if (!(sum > 0))
             throw Error("MLT: none of the " + std::to_string(m) +
                         " bootstrap paths carries light (the image is black); check the emitters");
-
-        // Starting states in proportion to I: inclusive prefix sum, then a stratified binary
-        // search per chain (one random offset for all, chains spaced evenly).
-        std::vector<uint64_t> start(n);
-        if (settings.start == MltStart::Bootstrap) {
-            std::vector<double> cdf(m);
-            double acc = 0;
-            for (uint64_t i = 0; i < m; ++i) cdf[i] = (acc += double(I[i]));
-            const double offset = double(uniformFloat(mix64(mltBootstrapKey(params_.seed, ~uint64_t(0)))));
-            for (uint32_t c = 0; c < n; ++c) {
-                const double target = (double(c) + offset) / double(n) * acc;
-                const auto it = std::upper_bound(cdf.begin(), cdf.end(), target);
-                start[c] = std::min<uint64_t>(uint64_t(it - cdf.begin()), m - 1);
-            }
-        } else {
-            for (uint32_t c = 0; c < n; ++c) start[c] = c;  // uniform: ordinary samples, I may be 0
-        }
+        const std::vector<uint64_t> start = mltChainStarts(I.data(), m, n, settings.start, params_.seed);
         const MltChainView<Store> v = view();
         std::vector<uint32_t> startRays(n);
         accel_.visit([&](const auto& intersector) {
@@ -206,6 +242,7 @@ public:
         });
         stats.rays += std::accumulate(startRays.begin(), startRays.end(), uint64_t(0));
         stats.bootstrapSeconds = secondsSince(t0);
+        started = true;
     }
 
     uint64_t iterate() override {
@@ -225,12 +262,11 @@ public:
 
         t = Clock::now();
         parallelFor(device_, "mlt.advance", n, [&](size_t c) { advanceChain(v, p, uint32_t(c)); }, 256);
-        uint64_t rays = 0, accepted = 0, large = 0;
-        double largeSum = 0;
-        for (uint32_t r : proposalRays_.span()) rays += r;
-        for (uint32_t a : accepted_.span()) accepted += a;
-        for (uint32_t l : largeSteps_.span()) large += l;
-        largeSum = reduceSum(device_, asConst(largeStepSum_.span()));
+        // The counters, reduced where they live (the GPU driver does the same on the device).
+        const uint64_t rays = reduceSum(device_, proposalRays_.constSpan());
+        const uint64_t accepted = reduceSum(device_, accepted_.constSpan());
+        const uint64_t large = reduceSum(device_, largeSteps_.constSpan());
+        const double largeSum = reduceSum(device_, largeStepSum_.constSpan());
         stats.advanceSeconds += secondsSince(t);
 
         t = Clock::now();
@@ -242,9 +278,8 @@ public:
         stats.accepted += accepted;
         stats.rays += rays;
         stats.largeSteps += large;
-        bSum_ += largeSum;
-        bCount_ += double(large);
-        stats.b = bSum_ / bCount_;
+        b_.add(largeSum, double(large));
+        stats.b = b_.b();
 
         if (settings.sortEvery > 0 && stats.iterations % settings.sortEvery == 0) {
             t = Clock::now();
@@ -255,22 +290,126 @@ public:
     }
 
     Image develop() const override {
-        Image out(params_.width, params_.height);
-        const double totalWeight = double(settings.chains) * settings.proposals * double(stats.iterations);
-        if (totalWeight == 0) return out;
-        const double integral = filter_.integral();
-        const double scale = double(pixels_) / totalWeight / (integral * integral);
-        const double* img = image_.data();
-        for (int y = 0; y < params_.height; ++y)
-            for (int x = 0; x < params_.width; ++x) {
-                const size_t pixel = size_t(y) * size_t(params_.width) + size_t(x);
-                const double s = scale / (coverageX_[size_t(x)] * coverageY_[size_t(y)]);
-                for (int c = 0; c < 3; ++c) out.rgb[3 * pixel + size_t(c)] = float(img[3 * pixel + size_t(c)] * s);
-            }
-        return out;
+        return film_.develop(image_.data(), double(settings.chains) * settings.proposals * double(stats.iterations));
+    }
+
+    bool resumable() const override { return true; }
+
+    // ---- checkpoint: everything a resumed render needs, checked against the settings ----------
+    //   char[8] magic | u32 version | u64 values that must match (named in mltCheckpointKeys)
+    //   stats | b | pixel weights | chain state arrays | splat sums | u64 FNV-1a hash
+    void save(std::ostream& out) const override {
+        BinaryWriter w(out, "MLT checkpoint");
+        w.bytes(kMltCheckpointMagic, sizeof kMltCheckpointMagic);
+        w.u32(kMltCheckpointVersion);
+        for (const auto& [name, value] : checkpointKeys()) w.u64(value);
+        w.u64(stats.iterations);
+        w.u64(stats.proposals);
+        w.u64(stats.accepted);
+        w.u64(stats.rays);
+        w.u64(stats.largeSteps);
+        w.u64(stats.bootstrapSamples);
+        for (double t : {stats.bootstrapSeconds, stats.traceSeconds, stats.advanceSeconds, stats.splatSeconds,
+                         stats.sortSeconds})
+            w.f64(t);
+        w.f64(b_.sum);
+        w.f64(b_.count);
+        w.array(pixelWeight_.data(), pixelWeight_.size());
+        w.array(fine_.data(), fine_.size());
+        w.array(coarse_.data(), coarse_.size());
+        w.array(values_.data(), values_.size());
+        w.array(pos_.data(), pos_.size());
+        w.array(value_.data(), value_.size());
+        w.array(importance_.data(), importance_.size());
+        w.array(usedDims_.data(), usedDims_.size());
+        w.array(image_.data(), image_.size());
+        w.u64(w.hash());
+    }
+
+    void load(std::istream& in) override {
+        BinaryReader r(in, "MLT checkpoint");
+        char magic[sizeof kMltCheckpointMagic];
+        r.bytes(magic, sizeof magic);
+        if (std::memcmp(magic, kMltCheckpointMagic, sizeof magic) != 0)
+            throw Error("MLT checkpoint: not an MLT checkpoint (bad magic number)");
+        if (const uint32_t version = r.u32(); version != kMltCheckpointVersion)
+            throw Error("MLT checkpoint: unsupported version " + std::to_string(version));
+        for (const auto& [name, value] : checkpointKeys())
+            if (const uint64_t saved = r.u64(); saved != value)
+                throw Error(std::string("MLT checkpoint: rendered with ") + name + " " + std::to_string(saved) +
+                            ", this render has " + std::to_string(value) + "; resume with the same settings");
+        MltStats s = stats;
+        s.iterations = r.u64();
+        s.proposals = r.u64();
+        s.accepted = r.u64();
+        s.rays = r.u64();
+        s.largeSteps = r.u64();
+        s.bootstrapSamples = r.u64();
+        for (double* t : {&s.bootstrapSeconds, &s.traceSeconds, &s.advanceSeconds, &s.splatSeconds, &s.sortSeconds})
+            *t = r.f64();
+        MltNormalisation b;
+        b.sum = r.f64();
+        b.count = r.f64();
+        // Read everything into copies first: a damaged file leaves this renderer untouched.
+        std::vector<float> weights(settings.target == MltTarget::Relative ? pixels_ : 0);
+        r.array(weights.data(), weights.size(), "pixel weights");
+        auto copyOf = [&](auto& buffer, const char* name) {
+            std::vector<std::remove_reference_t<decltype(*buffer.data())>> v(buffer.size());
+            r.array(v.data(), v.size(), name);
+            return v;
+        };
+        auto fine = copyOf(fine_, "fine state");
+        auto coarse = copyOf(coarse_, "coarse state");
+        auto values = copyOf(values_, "float state");
+        auto pos = copyOf(pos_, "positions");
+        auto value = copyOf(value_, "values");
+        auto importance = copyOf(importance_, "importances");
+        auto used = copyOf(usedDims_, "used dimensions");
+        auto image = copyOf(image_, "splat sums");
+        r.checkHash();
+        // Everything read and checked: commit.
+        auto commit = [](const auto& v, auto& buffer) { std::copy(v.begin(), v.end(), buffer.data()); };
+        commit(fine, fine_);
+        commit(coarse, coarse_);
+        commit(values, values_);
+        commit(pos, pos_);
+        commit(value, value_);
+        commit(importance, importance_);
+        commit(used, usedDims_);
+        commit(image, image_);
+        pixelWeight_ = std::move(weights);
+        params_.pixelWeight = pixelWeight_.empty() ? nullptr : pixelWeight_.data();
+        b_ = b;
+        s.b = b_.b();
+        stats = s;
+        started = true;
     }
 
 private:
+    /// What a checkpoint must agree on with this render to be resumed by it.
+    std::vector<std::pair<const char*, uint64_t>> checkpointKeys() const {
+        auto bits = [](float f) {
+            uint32_t u;
+            std::memcpy(&u, &f, 4);
+            return uint64_t(u);
+        };
+        return {{"width", uint64_t(params_.width)},
+                {"height", uint64_t(params_.height)},
+                {"seed", params_.seed},
+                {"chains", settings.chains},
+                {"proposals", settings.proposals},
+                {"state (0 compact, 1 float)", uint64_t(settings.state)},
+                {"target (0 luminance, 1 relative)", uint64_t(settings.target)},
+                {"stored dimensions", store_.dims},
+                {"large-step probability bits", bits(settings.largeStepProbability)},
+                {"s1 bits", bits(settings.mutation.s1)},
+                {"s2 bits", bits(settings.mutation.s2)},
+                {"max depth", uint64_t(int64_t(params_.path.maxDepth))},
+                {"rr depth", uint64_t(int64_t(params_.path.rrDepth))},
+                {"filter (type x 2^32 + radius bits)",
+                 (uint64_t(film_.filter().type) << 32) | bits(film_.filter().radius)}};
+    }
+
     void allocateStore(uint32_t n, uint32_t bounces) {
         const uint32_t dims = mltStoredDims(bounces);
         store_.dims = dims;
@@ -322,8 +461,8 @@ private:
         MltSplatView v;
         v.width = params_.width;
         v.height = params_.height;
-        v.filter = filter_;
-        v.footprint = filter_.footprint();
+        v.filter = film_.filter();
+        v.footprint = film_.filter().footprint();
         v.splats = splats_.data();
         v.count = uint32_t(splats_.size());
         v.accum = accum_.data();
@@ -400,8 +539,7 @@ private:
     Device device_;
     MltStepParams params_;
     uint32_t pixels_ = 0;
-    Filter filter_;
-    std::vector<double> coverageX_, coverageY_;
+    MltFilm film_;
     Store store_;
     Buffer<uint8_t> fine_;
     Buffer<uint16_t> coarse_;
@@ -413,7 +551,7 @@ private:
     Buffer<uint32_t> proposalRays_, largeSteps_, accepted_, sortKeys_, sortValues_, pixelStart_;
     Buffer<MltSplat> splats_;
     Buffer<double> image_;
-    double bSum_ = 0, bCount_ = 0;
+    MltNormalisation b_;
     std::vector<float> pixelWeight_;  // relative target only (params_.pixelWeight points here)
 };
 
@@ -426,12 +564,17 @@ MltRenderer::MltRenderer(const Scene& scene, const Accel& accel, const PathSetti
     else
         impl_ = std::make_unique<MltImpl<FloatChainStore>>(scene, accel, path, settings, seed);
 }
+MltRenderer::MltRenderer(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 MltRenderer::~MltRenderer() = default;
 void MltRenderer::bootstrap() { impl_->bootstrap(); }
 uint64_t MltRenderer::iterate() { return impl_->iterate(); }
 Image MltRenderer::develop() const { return impl_->develop(); }
 const MltStats& MltRenderer::stats() const { return impl_->stats; }
 const MltSettings& MltRenderer::settings() const { return impl_->settings; }
+bool MltRenderer::started() const { return impl_->started; }
+bool MltRenderer::resumable() const { return impl_->resumable(); }
+void MltRenderer::save(std::ostream& out) const { impl_->save(out); }
+void MltRenderer::load(std::istream& in) { impl_->load(in); }
 double MltRenderer::mutationsPerPixel() const {
     return impl_->pixels > 0 ? double(impl_->stats.proposals) / double(impl_->pixels) : 0;
 }

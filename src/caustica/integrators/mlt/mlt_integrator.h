@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <iosfwd>
 #include <memory>
 #include <string>
 
@@ -74,6 +75,9 @@ class MltRenderer {
 public:
     MltRenderer(const Scene& scene, const Accel& accel, const PathSettings& path, const MltSettings& settings,
                 uint64_t seed);
+    /// A renderer around another driver (a GPU's: cuda/); mlt_impl.h defines Impl.
+    struct Impl;
+    explicit MltRenderer(std::unique_ptr<Impl> impl);
     ~MltRenderer();
     MltRenderer(const MltRenderer&) = delete;
     MltRenderer& operator=(const MltRenderer&) = delete;
@@ -86,12 +90,19 @@ public:
     /// The image so far: splat sums scaled by pixels / total chain splat weight, divided by the
     /// filter's integral (and its coverage at the image border).
     Image develop() const;
+    /// True once bootstrap() ran or a checkpoint was loaded.
+    bool started() const;
+    /// Resumable checkpoints: save() writes the whole state (chains, splat sums, b, counters);
+    /// load() restores it into a renderer built with the same scene and settings, in place of
+    /// bootstrap(), and throws caustica::Error naming what differs (a damaged or foreign file
+    /// leaves the renderer untouched). Drivers without it say resumable() == false and throw.
+    bool resumable() const;
+    void save(std::ostream& out) const;
+    void load(std::istream& in);
     /// Proposals per pixel so far (the analogue of samples per pixel).
     double mutationsPerPixel() const;
     const MltStats& stats() const;
     const MltSettings& settings() const;
-
-    struct Impl;
 
 private:
     std::unique_ptr<Impl> impl_;

@@ -13,7 +13,7 @@ RenderStats runMlt(MltRenderer& mlt, const MltBudget& budget, const MltIteration
     const auto start = std::chrono::steady_clock::now();
     auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
     RenderStats stats;
-    mlt.bootstrap();
+    if (!mlt.started()) mlt.bootstrap();  // a renderer loaded from a checkpoint goes on where it was
     for (;;) {
         mlt.iterate();
         const MltStats& s = mlt.stats();

@@ -19,7 +19,7 @@ struct MltBudget {
 /// Called after every iteration with the running statistics (progress, periodic image writes).
 using MltIterationFn = std::function<void(const MltRenderer& mlt, const RenderStats& stats)>;
 
-/// Bootstraps `mlt` and iterates it until the budget is spent (at least one iteration). The
+/// Bootstraps `mlt` (unless it was loaded from a checkpoint) and iterates it until the budget is spent (at least one iteration). The
 /// statistics count proposals as samples (RenderStats::samplesPerPixel: rounded mutations per pixel).
 RenderStats runMlt(MltRenderer& mlt, const MltBudget& budget, const MltIterationFn& iterationDone = {});
 

@@ -1,5 +1,6 @@
 // path_integrator.h — host driver of the path tracer on the CPU: one pass = K samples per pixel,
-// each pixel a work item of parallelFor; random streams keyed by (pixel, sample index, seed).
+// each pixel a work item of parallelFor; random streams keyed by (pixel, sample index, seed)
+// (the pass loop shared with the direct integrator: integrators/pixel_pass.h).
 #pragma once
 
 #include <cstdint>
@@ -13,7 +14,7 @@ namespace caustica {
 
 PathSettings pathSettingsFrom(const IntegratorDesc& desc);
 
-/// Renders `pass.samplesPerPixel()` samples for every pixel, with sample indices starting at
+/// Renders `pass.samplesPerPixel` samples for every pixel, with sample indices starting at
 /// `firstSampleIndex`. Returns the number of rays traced. Deterministic for any thread count.
 uint64_t renderPathPass(const Scene& scene, const Accel& accel, const PathSettings& settings,
                         uint64_t seed, int firstSampleIndex, SamplePass& pass);

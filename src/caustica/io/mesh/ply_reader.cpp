@@ -57,6 +57,14 @@ const char* typeName(PlyType t) {
     return kNames[int(t)];
 }
 
+/// The T stored in host byte order at `b`, as a double.
+template <class T>
+double loadAs(const unsigned char* b) {
+    T v;
+    std::memcpy(&v, b, sizeof(T));
+    return double(v);
+}
+
 }  // namespace
 
 bool isIntegerType(PlyType t) {
@@ -229,43 +237,22 @@ double BinaryPlyReader::scalar(PlyType type, const std::string& property) {
     pos_ += n;
     if (swap_) std::reverse(b, b + n);
     switch (type) {
-        case PlyType::Int8: {
-            int8_t v;
-            std::memcpy(&v, b, 1);
-            return v;
-        }
+        case PlyType::Int8:
+            return loadAs<int8_t>(b);
         case PlyType::UInt8:
-            return b[0];
-        case PlyType::Int16: {
-            int16_t v;
-            std::memcpy(&v, b, 2);
-            return v;
-        }
-        case PlyType::UInt16: {
-            uint16_t v;
-            std::memcpy(&v, b, 2);
-            return v;
-        }
-        case PlyType::Int32: {
-            int32_t v;
-            std::memcpy(&v, b, 4);
-            return v;
-        }
-        case PlyType::UInt32: {
-            uint32_t v;
-            std::memcpy(&v, b, 4);
-            return v;
-        }
-        case PlyType::Float32: {
-            float v;
-            std::memcpy(&v, b, 4);
-            return v;
-        }
-        case PlyType::Float64: {
-            double v;
-            std::memcpy(&v, b, 8);
-            return v;
-        }
+            return loadAs<uint8_t>(b);
+        case PlyType::Int16:
+            return loadAs<int16_t>(b);
+        case PlyType::UInt16:
+            return loadAs<uint16_t>(b);
+        case PlyType::Int32:
+            return loadAs<int32_t>(b);
+        case PlyType::UInt32:
+            return loadAs<uint32_t>(b);
+        case PlyType::Float32:
+            return loadAs<float>(b);
+        case PlyType::Float64:
+            return loadAs<double>(b);
     }
     return 0;
 }

@@ -8,34 +8,43 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 namespace caustica::meshio {
 
-/// Parses all of `s` (surrounding blanks allowed) as a finite double.
-inline bool parseDouble(std::string_view s, double& out) {
+/// `s` without its leading and trailing blanks.
+inline std::string_view trimBlanks(std::string_view s) {
     while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
     while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
+    return s;
+}
+
+/// Parses all of `s` (surrounding blanks and one leading '+' allowed) as a T with
+/// std::from_chars; a floating-point T must also be finite.
+template <class T>
+inline bool parseWholeNumber(std::string_view s, T& out) {
+    s = trimBlanks(s);
     if (s.size() > 1 && s.front() == '+' && s[1] != '-') s.remove_prefix(1);
     if (s.empty()) return false;
-    double v = 0;
+    T v = 0;
     auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-    if (ec != std::errc() || ptr != s.data() + s.size() || !std::isfinite(v)) return false;
+    if (ec != std::errc() || ptr != s.data() + s.size()) return false;
+    if constexpr (std::is_floating_point_v<T>) {
+        if (!std::isfinite(v)) return false;
+    }
     out = v;
     return true;
 }
 
+/// Parses all of `s` (surrounding blanks allowed) as a finite double.
+inline bool parseDouble(std::string_view s, double& out) {
+    return parseWholeNumber(s, out);
+}
+
 /// Parses all of `s` (surrounding blanks allowed) as a decimal 64-bit integer.
 inline bool parseInt64(std::string_view s, int64_t& out) {
-    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
-    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
-    if (s.size() > 1 && s.front() == '+' && s[1] != '-') s.remove_prefix(1);
-    if (s.empty()) return false;
-    int64_t v = 0;
-    auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-    if (ec != std::errc() || ptr != s.data() + s.size()) return false;
-    out = v;
-    return true;
+    return parseWholeNumber(s, out);
 }
 
 /// Splits `s` at any of the characters in `delims`, dropping empty pieces.
@@ -55,8 +64,7 @@ inline std::vector<std::string_view> tokenize(std::string_view s,
 /// Quotes text for a one-line error message: blanks trimmed, line breaks and tabs turned into
 /// spaces, very long text shortened.
 inline std::string quoteText(std::string_view s) {
-    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
-    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
+    s = trimBlanks(s);
     std::string out(1, '\'');
     for (char c : s.substr(0, s.size() > 40 ? 37 : s.size()))
         out += std::isspace(static_cast<unsigned char>(c)) ? ' ' : c;

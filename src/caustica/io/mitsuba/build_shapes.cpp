@@ -141,24 +141,12 @@ const PluginTable<ShapeFn> kShapePlugins{
      {"ellipsoidsmesh", "ellipsoids are not supported"}}};
 
 /// Appends the geometry to the scene's flat arrays and returns the new shape's record.
-Shape appendGeometry(const Params& p, Scene& scene, ShapeGeometry& g, uint32_t shapeIndex) {
+Shape appendGeometry(const Params& p, Scene& scene, const ShapeGeometry& g, uint32_t shapeIndex) {
+    if (g.kind == ShapeGeometry::Kind::Sphere)
+        return appendPrimitiveShape(ShapeType::Sphere, scene.spheres, g.sphere, shapeIndex);
+    if (g.kind == ShapeGeometry::Kind::Cylinder)
+        return appendPrimitiveShape(ShapeType::Cylinder, scene.cylinders, g.cylinder, shapeIndex);
     Shape s;
-    if (g.kind == ShapeGeometry::Kind::Sphere) {
-        s.type = ShapeType::Sphere;
-        s.primOffset = uint32_t(scene.spheres.size());
-        s.primCount = 1;
-        g.sphere.shape = shapeIndex;
-        scene.spheres.push_back(g.sphere);
-        return s;
-    }
-    if (g.kind == ShapeGeometry::Kind::Cylinder) {
-        s.type = ShapeType::Cylinder;
-        s.primOffset = uint32_t(scene.cylinders.size());
-        s.primCount = 1;
-        g.cylinder.shape = shapeIndex;
-        scene.cylinders.push_back(g.cylinder);
-        return s;
-    }
     const TriangleMesh& m = g.mesh;
     if (scene.positions.size() + m.positions.size() >= 0xffffffffull ||
         scene.triangles.size() + m.triangles.size() >= 0xffffffffull)

@@ -12,6 +12,7 @@
 
 #include <cuda_runtime.h>
 
+#include "caustica/integrators/mlt/mlt_buffers.h"
 #include "caustica/integrators/mlt/mlt_impl.h"
 #include "caustica/integrators/mlt/mlt_target.h"
 #include "caustica/parallel/buffer.h"
@@ -80,13 +81,15 @@ double secondsSince(Clock::time_point t) {
 class GpuMltImpl final : public MltRenderer::Impl {
 public:
     GpuMltImpl(const Scene& scene, const Bvh& bvh, const PathSettings& path, const MltSettings& s, uint64_t seed)
-        : scene_(scene, bvh), film_(scene.film.filter, scene.film.width, scene.film.height) {
+        : scene_(scene, bvh),
+          film_(scene.film.filter, scene.film.width, scene.film.height),
+          buf_(gpu_, s.chains, s.proposals, uint32_t(scene.film.width) * uint32_t(scene.film.height), s.splat) {
         settings = s;
         params_ = mltStepParams(scene, path, s, seed);
         pixels_ = uint32_t(params_.width) * uint32_t(params_.height);
         pixels = pixels_;
 
-        const uint32_t n = s.chains, k = s.proposals;
+        const uint32_t n = s.chains;
         const uint32_t bounces = mltStoredBounces(path);
         // Compact store, dimension-major (coordinate d of chain c at d * chains + c): a warp's
         // threads read neighbouring chains' values of the same coordinate, which coalesces.
@@ -102,29 +105,6 @@ public:
         store_.coarseChainStride = 1;
         store_.coarseDimStride = n;
 
-        pos_ = Buffer<Vec2f>(gpu_, n);
-        value_ = Buffer<Spectrum>(gpu_, n);
-        importance_ = Buffer<float>(gpu_, n);
-        usedDims_ = Buffer<uint16_t>(gpu_, n);
-        proposalDims_ = Buffer<uint16_t>(gpu_, size_t(n) * k);
-        proposalPos_ = Buffer<Vec2f>(gpu_, size_t(n) * k);
-        proposalValue_ = Buffer<Spectrum>(gpu_, size_t(n) * k);
-        proposalImportance_ = Buffer<float>(gpu_, size_t(n) * k);
-        proposalRays_ = Buffer<uint32_t>(gpu_, size_t(n) * k);
-        splats_ = Buffer<MltSplat>(gpu_, size_t(n) * (k + 1));
-        largeStepSum_ = Buffer<float>(gpu_, n);
-        largeSteps_ = Buffer<uint32_t>(gpu_, n);
-        accepted_ = Buffer<uint32_t>(gpu_, n);
-        image_ = Buffer<double>(gpu_, size_t(3) * pixels_);
-        image_.zero();
-        if (s.splat == MltSplatKind::Atomic) {
-            accum_ = Buffer<float>(gpu_, size_t(3) * pixels_);
-            accum_.zero();
-        } else {
-            sortKeys_ = Buffer<uint32_t>(gpu_, splats_.size());
-            sortValues_ = Buffer<uint32_t>(gpu_, splats_.size());
-            pixelStart_ = Buffer<uint32_t>(gpu_, size_t(pixels_) + 1);
-        }
         if (s.sortEvery > 0) {
             mortonKeys_ = Buffer<uint64_t>(gpu_, n);
             order_ = Buffer<uint32_t>(gpu_, n);
@@ -136,10 +116,7 @@ public:
         }
         stats.bytesPerChain = mltBytesPerChain(MltStateKind::Compact, bounces);
         stats.stateBytes = stats.bytesPerChain * n;
-        stats.scratchBytes = proposalPos_.size() * (sizeof(Vec2f) + sizeof(Spectrum) + 2 * sizeof(float) + 2) +
-                             splats_.size() * (sizeof(MltSplat) + 2 * sizeof(uint32_t)) +
-                             size_t(n) * 3 * sizeof(uint32_t) + image_.size() * sizeof(double) +
-                             accum_.size() * sizeof(float) + mortonKeys_.size() * sizeof(uint64_t) +
+        stats.scratchBytes = buf_.scratchBytes() + mortonKeys_.size() * sizeof(uint64_t) +
                              order_.size() * sizeof(uint32_t) + permuteScratch_.size();
     }
 
@@ -182,89 +159,32 @@ public:
         launchMltStart(scene_.view(), accel, view(), params_, startIndex.data(), startRays.data());
         stats.rays += reduceSum(gpu_, startRays.constSpan());
         stats.bootstrapSeconds = secondsSince(t0);
+        started = true;
     }
 
     uint64_t iterate() override {
-        const uint32_t n = settings.chains, k = settings.proposals;
         MltStepParams p = params_;
         p.iteration = uint32_t(stats.iterations);
         p.b = float(stats.b);
         const MltChainView<CompactChainStore> v = view();
 
-        auto t = Clock::now();
-        launchMltProposals(scene_.view(), scene_.intersector(), v, p);
-        stats.traceSeconds += secondsSince(t);
-
-        t = Clock::now();
-        launchMltAdvance(v, p);
-        // The counters, reduced on the device (each reduction waits for the advance kernel).
-        const uint64_t rays = reduceSum(gpu_, proposalRays_.constSpan());
-        const uint64_t accepted = reduceSum(gpu_, accepted_.constSpan());
-        const uint64_t large = reduceSum(gpu_, largeSteps_.constSpan());
-        const double largeSum = reduceSum(gpu_, largeStepSum_.constSpan());
-        stats.advanceSeconds += secondsSince(t);
-
-        t = Clock::now();
-        splat();
-        stats.splatSeconds += secondsSince(t);
-
-        ++stats.iterations;
-        stats.proposals += uint64_t(n) * k;
-        stats.accepted += accepted;
-        stats.rays += rays;
-        stats.largeSteps += large;
-        b_.add(largeSum, double(large));
-        stats.b = b_.b();
-
-        if (settings.sortEvery > 0 && stats.iterations % settings.sortEvery == 0) {
-            t = Clock::now();
-            sortChains();
-            stats.sortSeconds += secondsSince(t);
-        }
-        return rays;
+        return mltTimedIteration(
+            stats, b_, settings, secondsSince, [&] { launchMltProposals(scene_.view(), scene_.intersector(), v, p); },
+            [&] {
+                launchMltAdvance(v, p);
+                return buf_.reduceCounters(gpu_);  // on the device; each reduction waits for the advance
+            },
+            [&] { splat(); }, [&] { sortChains(); });
     }
 
     Image develop() const override {
-        const std::vector<double> sums = image_.toHost();  // cudaMemcpy waits for the splats
+        const std::vector<double> sums = buf_.image.toHost();  // cudaMemcpy waits for the splats
         return film_.develop(sums.data(), double(settings.chains) * settings.proposals * double(stats.iterations));
     }
 
 private:
-    MltChainView<CompactChainStore> view() const {
-        MltChainView<CompactChainStore> v;
-        v.store = store_;
-        v.chains = settings.chains;
-        v.pos = pos_.data();
-        v.value = value_.data();
-        v.importance = importance_.data();
-        v.usedDims = usedDims_.data();
-        v.proposalDims = proposalDims_.data();
-        v.proposalPos = proposalPos_.data();
-        v.proposalValue = proposalValue_.data();
-        v.proposalImportance = proposalImportance_.data();
-        v.proposalRays = proposalRays_.data();
-        v.splats = splats_.data();
-        v.largeStepSum = largeStepSum_.data();
-        v.largeSteps = largeSteps_.data();
-        v.accepted = accepted_.data();
-        return v;
-    }
-
-    MltSplatView splatView() const {
-        MltSplatView v;
-        v.width = params_.width;
-        v.height = params_.height;
-        v.filter = film_.filter();
-        v.footprint = film_.filter().footprint();
-        v.splats = splats_.data();
-        v.count = uint32_t(splats_.size());
-        v.accum = accum_.data();
-        v.sortedPixel = sortKeys_.data();
-        v.sortedSplat = sortValues_.data();
-        v.pixelStart = pixelStart_.data();
-        v.image = image_.data();
-        return v;
-    }
+    MltChainView<CompactChainStore> view() { return buf_.view(store_); }
+    MltSplatView splatView() { return buf_.splatView(film_, params_.width, params_.height); }
 
     void splat() {
         const MltSplatView v = splatView();
@@ -272,9 +192,9 @@ private:
             launchMltSplatAtomic(v, pixels_);
             return;
         }
-        launchMltSplatKeys(v, sortKeys_.data(), sortValues_.data());
-        radixSortPairs(gpu_, sortKeys_.span(), sortValues_.span(), 32);
-        launchMltSplatGather(v, pixelStart_.data(), pixels_);
+        launchMltSplatKeys(v, buf_.sortKeys.data(), buf_.sortValues.data());
+        radixSortPairs(gpu_, buf_.sortKeys.span(), buf_.sortValues.span(), 32);
+        launchMltSplatGather(v, buf_.pixelStart.data(), pixels_);
     }
 
     /// The CPU's sortChains: Morton keys, a stable radix sort of (key, chain), and every per-chain
@@ -282,10 +202,10 @@ private:
     void sortChains() {
         launchMltMortonKeys(view(), params_.width, params_.height, mortonKeys_.data(), order_.data());
         radixSortPairs(gpu_, mortonKeys_.span(), order_.span(), 64);
-        permute(pos_.data(), sizeof(Vec2f), 1);
-        permute(value_.data(), sizeof(Spectrum), 1);
-        permute(importance_.data(), sizeof(float), 1);
-        permute(usedDims_.data(), sizeof(uint16_t), 1);
+        permute(buf_.pos.data(), sizeof(Vec2f), 1);
+        permute(buf_.value.data(), sizeof(Spectrum), 1);
+        permute(buf_.importance.data(), sizeof(float), 1);
+        permute(buf_.usedDims.data(), sizeof(uint16_t), 1);
         if (fineSlots_ > 0) permute(fine_.data(), 3, fineSlots_);
         if (coarseSlots_ > 0) permute(coarse_.data(), sizeof(uint16_t), coarseSlots_);
     }
@@ -307,14 +227,10 @@ private:
     size_t fineSlots_ = 0, coarseSlots_ = 0;
     Buffer<uint8_t> fine_, permuteScratch_;
     Buffer<uint16_t> coarse_;
-    Buffer<Vec2f> pos_, proposalPos_;
-    Buffer<Spectrum> value_, proposalValue_;
-    Buffer<float> importance_, proposalImportance_, largeStepSum_, accum_, pixelWeight_;
-    Buffer<uint16_t> usedDims_, proposalDims_;
-    Buffer<uint32_t> proposalRays_, largeSteps_, accepted_, sortKeys_, sortValues_, pixelStart_, order_;
+    MltChainBuffers buf_;
+    Buffer<float> pixelWeight_;
+    Buffer<uint32_t> order_;
     Buffer<uint64_t> mortonKeys_;
-    Buffer<MltSplat> splats_;
-    Buffer<double> image_;
     MltNormalisation b_;
 };
 

@@ -1,6 +1,6 @@
 // gpu_mlt_test.cpp — Metropolis light transport on the GPU (cuda/gpu_mlt.h): GPU MLT renders of
 // cornell-box (64x64) against the Mitsuba 3 reference the CPU driver is tested against
-// (tests/e2e/mlt_test.cpp, whose block statistics this repeats), atomic against sort splats, the
+// (tests/e2e/mlt_test.cpp; the block statistics of tests/common/block_agreement.h), atomic against sort splats, the
 // statistics the driver fills, and its errors. Built only with the CUDA backend (target
 // caustica_gpu_tests); every test that needs a GPU skips when cudaGetDeviceCount finds none.
 #include <gtest/gtest.h>
@@ -19,6 +19,7 @@
 #include "caustica/io/image_io.h"
 #include "caustica/io/scene_loader.h"
 #include "caustica/util/error.h"
+#include "common/block_agreement.h"
 #include "cuda/cuda_backend.h"
 #include "cuda/gpu_mlt.h"
 
@@ -56,83 +57,11 @@ Image renderGpuMlt(const Scene& scene, const Accel& accel, const MltSettings& se
     return mlt->develop();
 }
 
-// ---- block statistics (as tests/e2e/mlt_test.cpp: MLT's error is correlated between
-// neighbouring pixels, so 8x8-pixel block means are compared, with our variance from R runs) ----
-constexpr int kBlock = 8;
-
-struct BlockStats {
-    std::vector<double> mean, var;
-    double imageMean = 0, imageMeanVar = 0;
-};
-
-BlockStats blocksOfRuns(const std::vector<Image>& runs) {
-    const int w = runs[0].width, h = runs[0].height, bw = w / kBlock, bh = h / kBlock;
-    const double R = double(runs.size());
-    BlockStats s;
-    s.mean.assign(size_t(bw * bh * 3), 0);
-    s.var.assign(s.mean.size(), 0);
-    std::vector<std::vector<double>> perRun(runs.size(), std::vector<double>(s.mean.size(), 0));
-    std::vector<double> runMeans(runs.size(), 0);
-    for (size_t r = 0; r < runs.size(); ++r)
-        for (int y = 0; y < h; ++y)
-            for (int x = 0; x < w; ++x)
-                for (int c = 0; c < 3; ++c) {
-                    const double v = runs[r].pixel(x, y)[c];
-                    perRun[r][size_t(((y / kBlock) * bw + x / kBlock) * 3 + c)] += v / (kBlock * kBlock);
-                    runMeans[r] += v / (double(w) * h * 3);
-                }
-    for (size_t i = 0; i < s.mean.size(); ++i) {
-        double m = 0, m2 = 0;
-        for (const auto& b : perRun) m += b[i] / R;
-        for (const auto& b : perRun) m2 += (b[i] - m) * (b[i] - m);
-        s.mean[i] = m;
-        s.var[i] = m2 / (R - 1) / R;
-    }
-    double m = 0, m2 = 0;
-    for (double v : runMeans) m += v / R;
-    for (double v : runMeans) m2 += (v - m) * (v - m);
-    s.imageMean = m;
-    s.imageMeanVar = m2 / (R - 1) / R;
-    return s;
-}
-
-BlockStats blocksOfReference(const Image& mean, const Image& var) {
-    const int w = mean.width, h = mean.height, bw = w / kBlock;
-    BlockStats s;
-    s.mean.assign(size_t(bw * (h / kBlock) * 3), 0);
-    s.var.assign(s.mean.size(), 0);
-    const double n = double(kBlock * kBlock), N = double(w) * h * 3;
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x)
-            for (int c = 0; c < 3; ++c) {
-                const size_t i = size_t(((y / kBlock) * bw + x / kBlock) * 3 + c);
-                s.mean[i] += mean.pixel(x, y)[c] / n;
-                s.var[i] += var.pixel(x, y)[c] / (n * n);
-                s.imageMean += mean.pixel(x, y)[c] / N;
-                s.imageMeanVar += var.pixel(x, y)[c] / (N * N);
-            }
-    return s;
-}
-
-struct Agreement {
-    double meanZ2 = 0, imageZ = 0, relBias = 0;
-    /// Mean z^2 under three times E[t^2] of R - 1 degrees of freedom, |image-mean z| under 4.
-    bool passed(int runs) const {
-        return meanZ2 < 3.0 * double(runs - 1) / double(runs - 3) && std::fabs(imageZ) < 4.0;
-    }
-};
-
-Agreement compare(const BlockStats& ours, const BlockStats& ref, double scale = 1.0) {
-    Agreement a;
-    for (size_t i = 0; i < ours.mean.size(); ++i) {
-        const double z =
-            (ours.mean[i] * scale - ref.mean[i]) / std::sqrt(ours.var[i] * scale * scale + ref.var[i] + 1e-30);
-        a.meanZ2 += z * z / double(ours.mean.size());
-    }
-    a.imageZ = (ours.imageMean * scale - ref.imageMean) / std::sqrt(ours.imageMeanVar * scale * scale + ref.imageMeanVar);
-    a.relBias = ours.imageMean * scale / ref.imageMean - 1;
-    return a;
-}
+using test::Agreement;
+using test::BlockStats;
+using test::blocksOfReference;
+using test::blocksOfRuns;
+using test::compare;
 
 /// R GPU MLT runs of cornell-box (64x64, 96 mutations per pixel) against the Mitsuba reference;
 /// with `checkPower`, an 8% brighter image must be rejected by the same statistics.

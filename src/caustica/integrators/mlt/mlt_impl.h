@@ -32,6 +32,11 @@ struct MltRenderer::Impl {
 
 /// Throws caustica::Error (one line) for settings no driver can run.
 void validateMltSettings(const MltSettings& settings);
+/// `settings`, validated (for constructors' initialiser lists).
+inline const MltSettings& validatedMltSettings(const MltSettings& settings) {
+    validateMltSettings(settings);
+    return settings;
+}
 /// Kernel parameters of a render of `scene`; the driver sets iteration, b and pixelWeight.
 MltStepParams mltStepParams(const Scene& scene, const PathSettings& path, const MltSettings& settings,
                             uint64_t seed);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "caustica/film/filter.h"
+#include "caustica/integrators/mlt/mlt_buffers.h"
 #include "caustica/integrators/mlt/mlt_impl.h"
 #include "caustica/integrators/mlt/mlt_kernel.h"
 #include "caustica/parallel/buffer.h"
@@ -155,47 +156,25 @@ template <class Store>
 class MltImpl final : public MltRenderer::Impl {
 public:
     MltImpl(const Scene& scene, const Accel& accel, const PathSettings& path, const MltSettings& s, uint64_t seed)
-        : scene_(scene), accel_(accel), device_(Device::cpu()), film_(scene.film.filter, scene.film.width, scene.film.height) {
-        validateMltSettings(s);
+        : scene_(scene),
+          accel_(accel),
+          device_(Device::cpu()),
+          film_(scene.film.filter, scene.film.width, scene.film.height),
+          buf_(device_, validatedMltSettings(s).chains, s.proposals,
+               uint32_t(scene.film.width) * uint32_t(scene.film.height), s.splat) {
         settings = s;
         params_ = mltStepParams(scene, path, s, seed);
         pixels_ = uint32_t(params_.width) * uint32_t(params_.height);
         pixels = pixels_;
 
-        const uint32_t n = s.chains, k = s.proposals;
+        const uint32_t n = s.chains;
         const uint32_t bounces = mltStoredBounces(path);
         allocateStore(n, bounces);
-        pos_ = Buffer<Vec2f>(device_, n);
-        value_ = Buffer<Spectrum>(device_, n);
-        importance_ = Buffer<float>(device_, n);
-        usedDims_ = Buffer<uint16_t>(device_, n);
-        proposalDims_ = Buffer<uint16_t>(device_, size_t(n) * k);
-        proposalPos_ = Buffer<Vec2f>(device_, size_t(n) * k);
-        proposalValue_ = Buffer<Spectrum>(device_, size_t(n) * k);
-        proposalImportance_ = Buffer<float>(device_, size_t(n) * k);
-        proposalRays_ = Buffer<uint32_t>(device_, size_t(n) * k);
-        splats_ = Buffer<MltSplat>(device_, size_t(n) * (k + 1));
-        largeStepSum_ = Buffer<float>(device_, n);
-        largeSteps_ = Buffer<uint32_t>(device_, n);
-        accepted_ = Buffer<uint32_t>(device_, n);
-        image_ = Buffer<double>(device_, size_t(3) * pixels_);
-        image_.zero();
-        if (s.splat == MltSplatKind::Atomic) {
-            accum_ = Buffer<float>(device_, size_t(3) * pixels_);
-            accum_.zero();
-        } else {
-            sortKeys_ = Buffer<uint32_t>(device_, splats_.size());
-            sortValues_ = Buffer<uint32_t>(device_, splats_.size());
-            pixelStart_ = Buffer<uint32_t>(device_, size_t(pixels_) + 1);
-        }
         stats.bytesPerChain = mltBytesPerChain(std::is_same_v<Store, CompactChainStore> ? MltStateKind::Compact
                                                                                          : MltStateKind::Float,
                                                bounces);
         stats.stateBytes = stats.bytesPerChain * n;
-        stats.scratchBytes = proposalPos_.size() * (sizeof(Vec2f) + sizeof(Spectrum) + 2 * sizeof(float) + 2) +
-                             splats_.size() * (sizeof(MltSplat) + 2 * sizeof(uint32_t)) +
-                             size_t(n) * 3 * sizeof(uint32_t) + image_.size() * sizeof(double) +
-                             accum_.size() * sizeof(float);
+        stats.scratchBytes = buf_.scratchBytes();
     }
 
     void bootstrap() override {
@@ -252,45 +231,24 @@ public:
         p.b = float(stats.b);
         const MltChainView<Store> v = view();
 
-        auto t = Clock::now();
-        accel_.visit([&](const auto& intersector) {
-            parallelFor(device_, "mlt.propose", size_t(n) * k, [&](size_t item) {
-                traceProposal(scene_.view(), intersector, v, p, uint32_t(item));
-            }, 16);
-        });
-        stats.traceSeconds += secondsSince(t);
-
-        t = Clock::now();
-        parallelFor(device_, "mlt.advance", n, [&](size_t c) { advanceChain(v, p, uint32_t(c)); }, 256);
-        // The counters, reduced where they live (the GPU driver does the same on the device).
-        const uint64_t rays = reduceSum(device_, proposalRays_.constSpan());
-        const uint64_t accepted = reduceSum(device_, accepted_.constSpan());
-        const uint64_t large = reduceSum(device_, largeSteps_.constSpan());
-        const double largeSum = reduceSum(device_, largeStepSum_.constSpan());
-        stats.advanceSeconds += secondsSince(t);
-
-        t = Clock::now();
-        splat();
-        stats.splatSeconds += secondsSince(t);
-
-        ++stats.iterations;
-        stats.proposals += uint64_t(n) * k;
-        stats.accepted += accepted;
-        stats.rays += rays;
-        stats.largeSteps += large;
-        b_.add(largeSum, double(large));
-        stats.b = b_.b();
-
-        if (settings.sortEvery > 0 && stats.iterations % settings.sortEvery == 0) {
-            t = Clock::now();
-            sortChains();
-            stats.sortSeconds += secondsSince(t);
-        }
-        return rays;
+        return mltTimedIteration(
+            stats, b_, settings, secondsSince,
+            [&] {
+                accel_.visit([&](const auto& intersector) {
+                    parallelFor(device_, "mlt.propose", size_t(n) * k, [&](size_t item) {
+                        traceProposal(scene_.view(), intersector, v, p, uint32_t(item));
+                    }, 16);
+                });
+            },
+            [&] {
+                parallelFor(device_, "mlt.advance", n, [&](size_t c) { advanceChain(v, p, uint32_t(c)); }, 256);
+                return buf_.reduceCounters(device_);  // where they live, as on the GPU
+            },
+            [&] { splat(); }, [&] { sortChains(); });
     }
 
     Image develop() const override {
-        return film_.develop(image_.data(), double(settings.chains) * settings.proposals * double(stats.iterations));
+        return film_.develop(buf_.image.data(), double(settings.chains) * settings.proposals * double(stats.iterations));
     }
 
     bool resumable() const override { return true; }
@@ -318,11 +276,11 @@ public:
         w.array(fine_.data(), fine_.size());
         w.array(coarse_.data(), coarse_.size());
         w.array(values_.data(), values_.size());
-        w.array(pos_.data(), pos_.size());
-        w.array(value_.data(), value_.size());
-        w.array(importance_.data(), importance_.size());
-        w.array(usedDims_.data(), usedDims_.size());
-        w.array(image_.data(), image_.size());
+        w.array(buf_.pos.data(), buf_.pos.size());
+        w.array(buf_.value.data(), buf_.value.size());
+        w.array(buf_.importance.data(), buf_.importance.size());
+        w.array(buf_.usedDims.data(), buf_.usedDims.size());
+        w.array(buf_.image.data(), buf_.image.size());
         w.u64(w.hash());
     }
 
@@ -361,22 +319,22 @@ public:
         auto fine = copyOf(fine_, "fine state");
         auto coarse = copyOf(coarse_, "coarse state");
         auto values = copyOf(values_, "float state");
-        auto pos = copyOf(pos_, "positions");
-        auto value = copyOf(value_, "values");
-        auto importance = copyOf(importance_, "importances");
-        auto used = copyOf(usedDims_, "used dimensions");
-        auto image = copyOf(image_, "splat sums");
+        auto pos = copyOf(buf_.pos, "positions");
+        auto value = copyOf(buf_.value, "values");
+        auto importance = copyOf(buf_.importance, "importances");
+        auto used = copyOf(buf_.usedDims, "used dimensions");
+        auto image = copyOf(buf_.image, "splat sums");
         r.checkHash();
         // Everything read and checked: commit.
         auto commit = [](const auto& v, auto& buffer) { std::copy(v.begin(), v.end(), buffer.data()); };
         commit(fine, fine_);
         commit(coarse, coarse_);
         commit(values, values_);
-        commit(pos, pos_);
-        commit(value, value_);
-        commit(importance, importance_);
-        commit(used, usedDims_);
-        commit(image, image_);
+        commit(pos, buf_.pos);
+        commit(value, buf_.value);
+        commit(importance, buf_.importance);
+        commit(used, buf_.usedDims);
+        commit(image, buf_.image);
         pixelWeight_ = std::move(weights);
         params_.pixelWeight = pixelWeight_.empty() ? nullptr : pixelWeight_.data();
         b_ = b;
@@ -437,41 +395,8 @@ private:
         }
     }
 
-    MltChainView<Store> view() {
-        MltChainView<Store> v;
-        v.store = store_;
-        v.chains = settings.chains;
-        v.pos = pos_.data();
-        v.value = value_.data();
-        v.importance = importance_.data();
-        v.usedDims = usedDims_.data();
-        v.proposalDims = proposalDims_.data();
-        v.proposalPos = proposalPos_.data();
-        v.proposalValue = proposalValue_.data();
-        v.proposalImportance = proposalImportance_.data();
-        v.proposalRays = proposalRays_.data();
-        v.splats = splats_.data();
-        v.largeStepSum = largeStepSum_.data();
-        v.largeSteps = largeSteps_.data();
-        v.accepted = accepted_.data();
-        return v;
-    }
-
-    MltSplatView splatView() {
-        MltSplatView v;
-        v.width = params_.width;
-        v.height = params_.height;
-        v.filter = film_.filter();
-        v.footprint = film_.filter().footprint();
-        v.splats = splats_.data();
-        v.count = uint32_t(splats_.size());
-        v.accum = accum_.data();
-        v.sortedPixel = sortKeys_.data();
-        v.sortedSplat = sortValues_.data();
-        v.pixelStart = pixelStart_.data();
-        v.image = image_.data();
-        return v;
-    }
+    MltChainView<Store> view() { return buf_.view(store_); }
+    MltSplatView splatView() { return buf_.splatView(film_, params_.width, params_.height); }
 
     void splat() {
         const MltSplatView v = splatView();
@@ -480,14 +405,14 @@ private:
             parallelFor(device_, "mlt.splat_flush", pixels_, [&](size_t p) { flushAtomicPixel(v, uint32_t(p)); }, 256);
             return;
         }
-        uint32_t* keys = sortKeys_.data();
-        uint32_t* values = sortValues_.data();
+        uint32_t* keys = buf_.sortKeys.data();
+        uint32_t* values = buf_.sortValues.data();
         parallelFor(device_, "mlt.splat_keys", v.count, [&](size_t i) {
             keys[i] = splatPixel(v, v.splats[i]);
             values[i] = uint32_t(i);
         }, 256);
-        radixSortPairs(device_, sortKeys_.span(), sortValues_.span(), 32);
-        uint32_t* starts = pixelStart_.data();
+        radixSortPairs(device_, buf_.sortKeys.span(), buf_.sortValues.span(), 32);
+        uint32_t* starts = buf_.pixelStart.data();
         parallelFor(device_, "mlt.splat_starts", size_t(pixels_) + 1, [&](size_t p) {
             findPixelStart(starts, keys, v.count, uint32_t(p));
         }, 256);
@@ -508,10 +433,10 @@ private:
             o[c] = uint32_t(c);
         }, 256);
         radixSortPairs(device_, keys.span(), order.span(), 64);
-        permute(pos_, o);
-        permute(value_, o);
-        permute(importance_, o);
-        permute(usedDims_, o);
+        permute(buf_.pos, o);
+        permute(buf_.value, o);
+        permute(buf_.importance, o);
+        permute(buf_.usedDims, o);
         if constexpr (std::is_same_v<Store, CompactChainStore>) {
             permuteRows(fine_, 3 * store_.fineChainStride, o);
             permuteRows(coarse_, store_.coarseChainStride, o);
@@ -540,17 +465,11 @@ private:
     MltStepParams params_;
     uint32_t pixels_ = 0;
     MltFilm film_;
+    MltChainBuffers buf_;
     Store store_;
     Buffer<uint8_t> fine_;
     Buffer<uint16_t> coarse_;
     Buffer<float> values_;
-    Buffer<Vec2f> pos_, proposalPos_;
-    Buffer<Spectrum> value_, proposalValue_;
-    Buffer<float> importance_, proposalImportance_, largeStepSum_, accum_;
-    Buffer<uint16_t> usedDims_, proposalDims_;
-    Buffer<uint32_t> proposalRays_, largeSteps_, accepted_, sortKeys_, sortValues_, pixelStart_;
-    Buffer<MltSplat> splats_;
-    Buffer<double> image_;
     MltNormalisation b_;
     std::vector<float> pixelWeight_;  // relative target only (params_.pixelWeight points here)
 };

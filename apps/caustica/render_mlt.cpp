@@ -18,7 +18,7 @@ void addMltOptions(CLI::App& cmd, MltCliOptions& o) {
         ->check(CLI::Range(1u, 1u << 26));
     cmd.add_option("--mlt-bootstrap", o.bootstrap,
                    "MLT: ordinary Monte Carlo samples that estimate b and select the chains' starts "
-                   "(default 16 per pixel, at most 2^20, at least 4 per chain)")
+                   "(default 64 per pixel, at most 2^24, at least 4 per chain)")
         ->check(CLI::Range(uint64_t(1), uint64_t(1) << 34));
     cmd.add_option("--mlt-large-step", o.largeStep, "MLT: probability of a large step (default 0.1)")
         ->check(CLI::Range(0.0, 1.0));

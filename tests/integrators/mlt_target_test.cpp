@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "caustica/integrators/mlt/mlt_integrator.h"
 #include "caustica/integrators/mlt/mlt_target.h"
 #include "caustica/util/error.h"
 
@@ -63,6 +64,12 @@ TEST(MltTarget, ABlackBootstrapGivesUnitWeights) {
     s.add(0, 0.0f, 10);
     const std::vector<float> w = mltRelativePixelWeights(s.luminance.data(), s.pixel.data(), s.luminance.size(), 3, 2);
     for (float x : w) EXPECT_EQ(x, 1.0f);
+}
+
+TEST(MltBootstrap, DefaultSizeIs64PerPixelCappedAndAtLeast4PerChain) {
+    EXPECT_EQ(mltDefaultBootstrapSamples(1024, 64 * 64), 64u * 64 * 64);
+    EXPECT_EQ(mltDefaultBootstrapSamples(1024, 4096 * 4096), uint64_t(1) << 24);
+    EXPECT_EQ(mltDefaultBootstrapSamples(1u << 20, 16 * 16), uint64_t(4) << 20);
 }
 
 TEST(MltTarget, ParsesItsNames) {

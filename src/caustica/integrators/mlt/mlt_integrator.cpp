@@ -43,7 +43,7 @@ uint32_t mltStoredBounces(const PathSettings& settings) {
 }
 
 uint64_t mltDefaultBootstrapSamples(uint32_t chains, uint64_t pixels) {
-    return std::max<uint64_t>(uint64_t(4) * chains, std::min<uint64_t>(16 * pixels, uint64_t(1) << 20));
+    return std::max<uint64_t>(uint64_t(4) * chains, std::min<uint64_t>(64 * pixels, uint64_t(1) << 24));
 }
 
 size_t mltBytesPerChain(MltStateKind kind, uint32_t storedBounces) {

@@ -22,13 +22,14 @@ Examples:
 A configuration is NAME or NAME:EXTRA-ARGS; a bare name is an integrator (path, direct, mlt).
 """
 import argparse
-import csv
 import json
 import os
 import shlex
 import subprocess
 import sys
 import tempfile
+
+from csv_out import write_csv
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, '..'))
@@ -96,12 +97,7 @@ def main():
                     err = row['relmse_ref_noise_removed'] if var else row['relmse']
                     print('%-12s %6.1f s  relMSE %.4g%s' % (name, st['seconds'], err,
                           ' (reference noise removed)' if var else ''), flush=True)
-    os.makedirs(os.path.dirname(os.path.abspath(a.csv)), exist_ok=True)
-    with open(a.csv, 'w', newline='') as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
-        w.writeheader()
-        w.writerows(rows)
-    print('wrote', a.csv)
+    write_csv(a.csv, rows)
 
     # Mean error per configuration and budget, and the ratio to the first configuration.
     key = 'relmse_ref_noise_removed' if var else 'relmse'

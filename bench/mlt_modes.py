@@ -9,12 +9,13 @@ per iteration: trace + advance + splat time, splat time alone, sort time, and by
   bench/mlt_modes.py scenes/cornell-water/scene.xml --res 128x128 --spp 64 --csv out/mlt_modes.csv
 """
 import argparse
-import csv
 import json
 import os
 import subprocess
 import sys
 import tempfile
+
+from csv_out import write_csv
 
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), '..'))
 
@@ -60,12 +61,7 @@ def main():
             print('%-28s %7.1f ms/it  splat %6.2f ms  sort %6.2f ms  %5d B/chain  %.3g Msamples/s' % (
                 name, r['ms_per_iteration'], r['splat_ms_per_iteration'], r['sort_ms_per_iteration'],
                 r['bytes_per_chain'], r['samples_per_s'] * 1e-6), flush=True)
-    os.makedirs(os.path.dirname(os.path.abspath(a.csv)), exist_ok=True)
-    with open(a.csv, 'w', newline='') as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
-        w.writeheader()
-        w.writerows(rows)
-    print('wrote', a.csv)
+    write_csv(a.csv, rows)
 
 
 if __name__ == '__main__':

@@ -12,12 +12,17 @@
 
 #include <cuda_runtime.h>
 
+#include "caustica/integrators/mlt/mlt_bootstrap.h"
 #include "caustica/integrators/mlt/mlt_buffers.h"
+#include "caustica/integrators/mlt/mlt_checkpoint.h"
+#include "caustica/integrators/mlt/mlt_gpu_memory.h"
 #include "caustica/integrators/mlt/mlt_impl.h"
 #include "caustica/integrators/mlt/mlt_target.h"
+#include "caustica/integrators/path/gpu_memory.h"
 #include "caustica/parallel/buffer.h"
 #include "caustica/parallel/primitives.h"
 #include "caustica/util/error.h"
+#include "cuda/cuda_backend.h"
 #include "cuda/cuda_check.h"
 #include "cuda/gpu_scene.h"
 #include "cuda/mlt_kernels.h"
@@ -25,12 +30,6 @@
 
 namespace caustica {
 namespace gpu_mlt_kernels {
-
-/// Relative target: importance[i] *= weight[pixel[i]] (the CPU's "mlt.bootstrap_target").
-void applyPixelWeights(float* importance, const uint32_t* pixel, const float* weight, uint64_t count) {
-    parallelForCuda("mlt.bootstrap_target", count,
-                    [=] __device__(size_t i) { importance[i] *= weight[pixel[i]]; });
-}
 
 /// `elementBytes` bytes moved as one value.
 template <size_t N>
@@ -81,14 +80,10 @@ double secondsSince(Clock::time_point t) {
 class GpuMltImpl final : public MltRenderer::Impl {
 public:
     GpuMltImpl(const Scene& scene, const Bvh& bvh, const PathSettings& path, const MltSettings& s, uint64_t seed)
-        : scene_(scene, bvh),
+        : Impl(scene, path, s, seed),
+          scene_(scene, bvh),
           film_(scene.film.filter, scene.film.width, scene.film.height),
-          buf_(gpu_, s.chains, s.proposals, uint32_t(scene.film.width) * uint32_t(scene.film.height), s.splat) {
-        settings = s;
-        params_ = mltStepParams(scene, path, s, seed);
-        pixels_ = uint32_t(params_.width) * uint32_t(params_.height);
-        pixels = pixels_;
-
+          buf_(gpu_, s.chains, s.proposals, pixels_, s.splat) {
         const uint32_t n = s.chains;
         const uint32_t bounces = mltStoredBounces(path);
         // Compact store, dimension-major (coordinate d of chain c at d * chains + c): a warp's
@@ -110,9 +105,7 @@ public:
             order_ = Buffer<uint32_t>(gpu_, n);
             // One scratch array as large as the largest per-chain array; each is permuted into it
             // and copied back.
-            const size_t largest = std::max({fine_.size(), coarse_.size() * sizeof(uint16_t),
-                                             size_t(n) * sizeof(Spectrum), size_t(n) * sizeof(Vec2f)});
-            permuteScratch_ = Buffer<uint8_t>(gpu_, largest);
+            permuteScratch_ = Buffer<uint8_t>(gpu_, mltGpuPermuteScratchBytes(n, bounces));
         }
         stats.bytesPerChain = mltBytesPerChain(MltStateKind::Compact, bounces);
         stats.stateBytes = stats.bytesPerChain * n;
@@ -131,29 +124,16 @@ public:
         launchMltBootstrap(scene_.view(), accel, params_, m, importance.data(), pixelOf.data(), rays.data());
         stats.rays += reduceSum(gpu_, rays.constSpan());
 
-        std::vector<float> hostImportance;  // downloaded only where a host step reads it
-        if (settings.target == MltTarget::Relative) {
-            hostImportance = importance.toHost();
-            const std::vector<uint32_t> hostPixel = pixelOf.toHost();
-            const std::vector<float> weight =
-                mltRelativePixelWeights(hostImportance.data(), hostPixel.data(), m, params_.width, params_.height);
-            pixelWeight_ = Buffer<float>(gpu_, weight);
+        // The plan (pixel weights, b, starts) is made on the host, as on the CPU.
+        std::vector<float> hostImportance = importance.toHost();
+        const MltBootstrapPlan plan = planMltBootstrap(hostImportance, pixelOf.toHost(), settings, params_.width,
+                                                       params_.height, params_.seed);
+        if (!plan.pixelWeight.empty()) {
+            pixelWeight_ = Buffer<float>(gpu_, plan.pixelWeight);
             params_.pixelWeight = pixelWeight_.data();  // device memory: the kernels read it
-            gpu_mlt_kernels::applyPixelWeights(importance.data(), pixelOf.data(), pixelWeight_.data(), m);
-            // The host copy gets the same products (one correctly rounded float multiply each).
-            for (uint64_t i = 0; i < m; ++i) hostImportance[i] *= weight[hostPixel[i]];
         }
-        // b = E[I]: the bootstrap mean (refined later by the large steps).
-        const double sum = reduceSum(gpu_, importance.constSpan());
-        stats.bootstrapSamples = m;
-        b_.add(sum, double(m));
-        stats.b = b_.b();
-        if (!(sum > 0))
-            throw Error("MLT: none of the " + std::to_string(m) +
-                        " bootstrap paths carries light (the image is black); check the emitters");
-        if (settings.start == MltStart::Bootstrap && hostImportance.empty()) hostImportance = importance.toHost();
-        const std::vector<uint64_t> start =
-            mltChainStarts(hostImportance.empty() ? nullptr : hostImportance.data(), m, n, settings.start, params_.seed);
+        adoptMltBootstrap(plan, m, b_, stats);
+        const std::vector<uint64_t>& start = plan.starts;
         const Buffer<uint64_t> startIndex(gpu_, start);
         Buffer<uint32_t> startRays(gpu_, n);
         launchMltStart(scene_.view(), accel, view(), params_, startIndex.data(), startRays.data());
@@ -165,7 +145,7 @@ public:
     uint64_t iterate() override {
         MltStepParams p = params_;
         p.iteration = uint32_t(stats.iterations);
-        p.b = float(stats.b);
+        p.b = float(b_.b0);
         const MltChainView<CompactChainStore> v = view();
 
         return mltTimedIteration(
@@ -179,10 +159,41 @@ public:
 
     Image develop() const override {
         const std::vector<double> sums = buf_.image.toHost();  // cudaMemcpy waits for the splats
-        return film_.develop(sums.data(), double(settings.chains) * settings.proposals * double(stats.iterations));
+        return film_.develop(sums.data(), b_, double(settings.chains) * settings.proposals * double(stats.iterations));
+    }
+
+    // Checkpoints hold the CPU driver's chain-major store: the dimension-major arrays are
+    // transposed on the host (mlt_checkpoint.h), so a checkpoint resumes on either driver.
+    void save(std::ostream& out) const override {
+        MltCheckpoint c = mltCheckpointOf(stats, b_, buf_);
+        c.pixelWeight = pixelWeight_.toHost();
+        c.fine = mltTransposeCells(fine_.toHost(), fineSlots_, settings.chains, 3);
+        c.coarse = mltTransposeCells(coarse_.toHost(), coarseSlots_, settings.chains, 1);
+        writeMltCheckpoint(out, checkpointKeys(), c);
+    }
+
+    void load(std::istream& in) override {
+        MltCheckpointSizes sizes;
+        sizes.pixelWeights = settings.target == MltTarget::Relative ? pixels_ : 0;
+        sizes.fine = fine_.size();
+        sizes.coarse = coarse_.size();
+        sizes.chains = settings.chains;
+        sizes.image = buf_.image.size();
+        const MltCheckpoint c = readMltCheckpoint(in, checkpointKeys(), sizes, stats);  // throws before any change
+        restoreMltCheckpoint(c, stats, b_, buf_);
+        fine_.copyFromHost(mltTransposeCells(c.fine, settings.chains, fineSlots_, 3));
+        coarse_.copyFromHost(mltTransposeCells(c.coarse, settings.chains, coarseSlots_, 1));
+        // The kernels read the weights from device memory through params_.
+        pixelWeight_ = c.pixelWeight.empty() ? Buffer<float>() : Buffer<float>(gpu_, c.pixelWeight);
+        params_.pixelWeight = pixelWeight_.empty() ? nullptr : pixelWeight_.data();
+        started = true;
     }
 
 private:
+    MltCheckpointKeys checkpointKeys() const {
+        return mltCheckpointKeys(params_, settings, store_.dims, film_.filter());
+    }
+
     MltChainView<CompactChainStore> view() { return buf_.view(store_); }
     MltSplatView splatView() { return buf_.splatView(film_, params_.width, params_.height); }
 
@@ -220,8 +231,6 @@ private:
 
     Device gpu_ = Device::cuda();
     GpuScene scene_;
-    MltStepParams params_;
-    uint32_t pixels_ = 0;
     MltFilm film_;
     CompactChainStore store_;
     size_t fineSlots_ = 0, coarseSlots_ = 0;
@@ -234,6 +243,23 @@ private:
     MltNormalisation b_;
 };
 
+/// Refuses (one line) a render whose estimated device memory exceeds the free memory; without a
+/// GPU there is nothing to compare with and the allocation reports the error.
+void checkGpuMltMemory(const Scene& scene, const Bvh& bvh, const PathSettings& path, const MltSettings& settings) {
+    size_t freeBytes = 0, totalBytes = 0;
+    if (!cudaMemoryInfo(freeBytes, totalBytes)) return;
+    const GpuMemoryEstimate sceneBytes = estimateGpuMemory(gpuRenderSizes(scene, bvh, 1, GpuPathMode::Megakernel));
+    const uint32_t pixels = uint32_t(scene.film.width) * uint32_t(scene.film.height);
+    const MltGpuMemoryEstimate mlt = estimateMltGpuMemory(settings, mltStoredBounces(path), pixels);
+    const size_t need = sceneBytes.scene + sceneBytes.bvh + mlt.total();
+    if (need <= freeBytes) return;
+    throw Error("GPU memory: MLT needs about " + formatBytes(need) + " (scene and BVH " +
+                formatBytes(sceneBytes.scene + sceneBytes.bvh) + ", chains " +
+                formatBytes(mlt.chainState + mlt.chainScratch + mlt.chainSort) + ", bootstrap " +
+                formatBytes(mlt.bootstrap) + ") but only " + formatBytes(freeBytes) + " is free on " +
+                cudaDeviceDescription() + "; lower --mlt-chains or --mlt-bootstrap, or use --device cpu");
+}
+
 }  // namespace
 
 std::unique_ptr<MltRenderer> makeGpuMltRenderer(const Scene& scene, const Bvh& bvh, const PathSettings& path,
@@ -245,6 +271,7 @@ std::unique_ptr<MltRenderer> makeGpuMltRenderer(const Scene& scene, const Bvh& b
                     "the compact state only); use --mlt-state compact or --device cpu");
     if (uint64_t(settings.chains) * (uint64_t(settings.proposals) + 1) > uint64_t(0xffffffffu))
         throw Error("GPU MLT: chains x (proposals + 1) must stay below 2^32");
+    checkGpuMltMemory(scene, bvh, path, settings);
     return std::make_unique<MltRenderer>(std::make_unique<GpuMltImpl>(scene, bvh, path, settings, seed));
 }
 

@@ -9,6 +9,9 @@
 // distribution; their chains drift apart with rounding (nvcc contracts FMAs), so images agree
 // statistically, not bit for bit.
 //
+// Resumable: save()/load() write and read the CPU driver's checkpoint format
+// (integrators/mlt/mlt_checkpoint.h), the chain store transposed to its chain-major layout.
+//
 // Compact chain state only: the path-tracing kernels are instantiated for CompactChainStore
 // alone (each costs minutes of ptxas); --mlt-state float is refused with an Error.
 //
@@ -27,8 +30,9 @@ namespace caustica {
 
 /// An MltRenderer whose chains live on Device::cuda(): uploads `scene` and `bvh` and allocates
 /// the chains' state and scratch. Throws caustica::Error (one line) for invalid settings, for
-/// `settings.state == MltStateKind::Float` (before touching the GPU), and for any CUDA failure
-/// (no GPU, out of memory). Needs the CUDA backend registered (registerCudaBackend()).
+/// `settings.state == MltStateKind::Float` (before touching the GPU), for a render whose
+/// estimated memory (mlt_gpu_memory.h, plus the scene and BVH) exceeds the free device memory
+/// (before allocating), and for any CUDA failure (no GPU, out of memory). Needs the CUDA backend registered (registerCudaBackend()).
 std::unique_ptr<MltRenderer> makeGpuMltRenderer(const Scene& scene, const Bvh& bvh, const PathSettings& path,
                                                 const MltSettings& settings, uint64_t seed);
 

@@ -89,7 +89,6 @@ int runMltRender(const Scene& scene, const Accel& accel, const MltSettings& sett
                        : std::make_unique<MltRenderer>(scene, accel, pathSettingsFrom(scene.integrator), settings, seed);
     MltRenderer& mlt = *renderer;
     if (r.resume) {
-        if (!mlt.resumable()) throw Error("--resume: this MLT driver keeps no resumable checkpoint");
         std::ifstream in(r.checkpoint, std::ios::binary);
         if (!in) throw Error(r.checkpoint + ": no checkpoint to resume from");
         try {
@@ -100,7 +99,7 @@ int runMltRender(const Scene& scene, const Accel& accel, const MltSettings& sett
         std::fprintf(stderr, "resuming from %s at %.4g mutations/pixel\n", r.checkpoint.c_str(), mlt.mutationsPerPixel());
     }
     auto saveState = [&] {
-        if (mlt.resumable() && !r.checkpoint.empty())
+        if (!r.checkpoint.empty())
             writeFileAtomically(r.checkpoint, [&](std::ostream& out) { mlt.save(out); });
     };
     MltBudget budget;
@@ -131,8 +130,8 @@ int runMltRender(const Scene& scene, const Accel& accel, const MltSettings& sett
     writeImageOutputs(r.outputs, mlt.develop(), spp(), stats, r.info);
     if (stats.cancelled) {
         saveState();
-        std::fprintf(stderr, "interrupted: wrote the image after %.4g mutations/pixel%s\n", mlt.mutationsPerPixel(),
-                     mlt.resumable() ? (" and " + r.checkpoint + " (continue with --resume)").c_str() : "");
+        std::fprintf(stderr, "interrupted: wrote the image after %.4g mutations/pixel and %s (continue with --resume)\n",
+                     mlt.mutationsPerPixel(), r.checkpoint.c_str());
     } else if (!r.checkpoint.empty() && std::filesystem::exists(r.checkpoint)) {
         std::filesystem::remove(r.checkpoint);
     }

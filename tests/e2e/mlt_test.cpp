@@ -24,7 +24,7 @@
 #include "caustica/integrators/path/path_integrator.h"
 #include "caustica/io/image_io.h"
 #include "common/block_agreement.h"
-#include "common/image_stats.h"
+#include "common/mlt_reference_check.h"
 #include "render_helpers.h"
 
 namespace caustica::test {
@@ -38,78 +38,66 @@ Image renderMlt(const Scene& scene, const Accel& accel, const MltSettings& setti
     return mlt.develop();
 }
 
-struct MltCase {
-    const char* scene;
-    const char* reference;
-    double mutationsPerPixel;
-    double detectableError;  // relative brightness error the statistics must reject
+void checkAgainstReference(const MltCase& c, const MltSettings& settings, bool checkPower) {
+    checkMltAgainstReference(c, settings, AccelKind::Embree, "mlt", checkPower, 6, renderMlt);
+}
+
+/// cornell-box at w x h with Embree and small MLT settings (`chains`, `bootstrap` samples): the
+/// checkpoint tests' renders.
+struct SmallCornellBox {
+    Scene scene;
+    Accel accel;
+    PathSettings path;
+    MltSettings settings = smallMltSettings();
+    SmallCornellBox(int w, int h, uint32_t chains, uint64_t bootstrap)
+        : scene(loadScene(sourcePath("scenes/cornell-box/scene.xml"),
+                          {{"width", std::to_string(w)}, {"height", std::to_string(h)}})),
+          accel(scene, AccelKind::Embree),
+          path(pathSettingsFrom(scene.integrator)) {
+        settings.chains = chains;
+        settings.bootstrapSamples = bootstrap;
+    }
+    MltRenderer renderer(const MltSettings& s, uint64_t seed) const {
+        return MltRenderer(scene, accel, path, s, seed);
+    }
 };
-
-void checkMltAgainstReference(const MltCase& c, const MltSettings& settings, bool checkPower, int runs = 6) {
-    const std::string refPath = sourcePath(c.reference);
-    const Image ref = readImage(refPath + ".exr"), refVar = readImage(refPath + ".var.exr");
-    const Scene scene = loadScene(sourcePath(c.scene), {{"width", std::to_string(ref.width)},
-                                                        {"height", std::to_string(ref.height)}});
-    const Accel accel(scene, AccelKind::Embree);
-    std::vector<Image> images;
-    for (int r = 0; r < runs; ++r) images.push_back(renderMlt(scene, accel, settings, 100 + uint64_t(r), c.mutationsPerPixel));
-    const BlockStats ours = blocksOfRuns(images), theirs = blocksOfReference(ref, refVar);
-    const Agreement a = compare(ours, theirs);
-    std::printf("%s mlt (k=%u, %s, %s, sort every %u): block mean z^2 %.2f, image-mean z %.2f, bias %+.2f%%\n",
-                c.scene, settings.proposals, settings.state == MltStateKind::Compact ? "compact" : "float",
-                settings.splat == MltSplatKind::Atomic ? "atomic" : "sort", settings.sortEvery, a.meanZ2, a.imageZ,
-                100 * a.relBias);
-    EXPECT_TRUE(a.passed(runs)) << "block mean z^2 " << a.meanZ2 << ", image-mean z " << a.imageZ;
-    if (!checkPower) return;
-    // Power: the same statistics reject a brighter image.
-    const Agreement wrong = compare(ours, theirs, 1 + c.detectableError);
-    EXPECT_FALSE(wrong.passed(runs)) << "an error of " << 100 * c.detectableError
-                                     << "% is not detected: mean z^2 " << wrong.meanZ2 << ", image-mean z " << wrong.imageZ;
-}
-
-MltSettings smallSettings() {
-    MltSettings s;
-    s.chains = 4096;
-    s.bootstrapSamples = 1 << 17;
-    return s;
-}
 
 const MltCase kBox{"scenes/cornell-box/scene.xml", "scenes/cornell-box/reference/cornell-box-64", 96, 0.08};
 const MltCase kWater{"scenes/cornell-water/scene.xml", "scenes/cornell-water/reference/cornell-water-64", 96, 0.15};
 
-TEST(MltConvergence, CornellBoxCompactAtomic) { checkMltAgainstReference(kBox, smallSettings(), true); }
+TEST(MltConvergence, CornellBoxCompactAtomic) { checkAgainstReference(kBox, smallMltSettings(), true); }
 
 TEST(MltConvergence, CornellBoxFloatSortTwoProposalsMortonSorted) {
-    MltSettings s = smallSettings();
+    MltSettings s = smallMltSettings();
     s.state = MltStateKind::Float;
     s.splat = MltSplatKind::Sort;
     s.proposals = 2;
     s.sortEvery = 4;
-    checkMltAgainstReference(kBox, s, false);
+    checkAgainstReference(kBox, s, false);
 }
 
-TEST(MltConvergence, CornellWater) { checkMltAgainstReference(kWater, smallSettings(), true); }
+TEST(MltConvergence, CornellWater) { checkAgainstReference(kWater, smallMltSettings(), true); }
 
 // Kelemen's luminance target with the large-step combination: same image, power kept.
 TEST(MltConvergence, CornellWaterLuminanceTarget) {
-    MltSettings s = smallSettings();
+    MltSettings s = smallMltSettings();
     s.target = MltTarget::Luminance;
     s.largeStepProbability = 0.3f;
-    checkMltAgainstReference(kWater, s, true);
+    checkAgainstReference(kWater, s, true);
 }
 
 // The relative target with no large steps at all: the chains alone.
 TEST(MltConvergence, CornellBoxNoLargeSteps) {
-    MltSettings s = smallSettings();
+    MltSettings s = smallMltSettings();
     s.largeStepProbability = 0;
-    checkMltAgainstReference(kBox, s, false);
+    checkAgainstReference(kBox, s, false);
 }
 
 TEST(MltConvergence, CornellWaterFourProposals) {
-    MltSettings s = smallSettings();
+    MltSettings s = smallMltSettings();
     s.proposals = 4;
     s.splat = MltSplatKind::Sort;
-    checkMltAgainstReference({kWater.scene, kWater.reference, 64, 0}, s, false);
+    checkAgainstReference({kWater.scene, kWater.reference, 64, 0}, s, false);
 }
 
 // Splats through a wide filter (tent, radius 1.5) land on several pixels; the border pixels are
@@ -121,7 +109,7 @@ TEST(MltConvergence, TentFilterMatchesThePathTracer) {
     constexpr int kRuns = 10;
     std::vector<Image> mlt, path;
     for (int r = 0; r < kRuns; ++r) {
-        mlt.push_back(renderMlt(scene, accel, smallSettings(), 7 + uint64_t(r), 160));
+        mlt.push_back(renderMlt(scene, accel, smallMltSettings(), 7 + uint64_t(r), 160));
         path.push_back(renderImage(scene, {256, uint64_t(50 + r), AccelKind::Embree, 0}));
     }
     const Agreement a = compare(blocksOfRuns(mlt), blocksOfRuns(path));
@@ -135,14 +123,9 @@ TEST(MltConvergence, TentFilterMatchesThePathTracer) {
 // With sort splatting every addition happens in a fixed order: the image does not depend on the
 // thread count. Atomic splatting gives the same image up to float rounding.
 TEST(MltDeterminism, SortSplatsAreBitIdenticalForAnyThreadCountAndAtomicsAgree) {
-    Scene scene = loadScene(sourcePath("scenes/cornell-box/scene.xml"), {{"width", "24"}, {"height", "16"}});
-    scene.film.filter = FilterDesc{FilterType::Gaussian, 2.0f, 0.5f};
+    const Scene scene = splatComparisonScene();
     const Accel accel(scene, AccelKind::Embree);
-    MltSettings s = smallSettings();
-    s.chains = 512;
-    s.bootstrapSamples = 4096;
-    s.splat = MltSplatKind::Sort;
-    s.sortEvery = 3;
+    MltSettings s = splatComparisonSettings();
     Image one, many;
     {
         tbb::task_arena arena(1);
@@ -152,35 +135,27 @@ TEST(MltDeterminism, SortSplatsAreBitIdenticalForAnyThreadCountAndAtomicsAgree) 
     EXPECT_EQ(one.rgb, many.rgb);
     s.splat = MltSplatKind::Atomic;
     const Image atomic = renderMlt(scene, accel, s, 3, 16);
-    double maxRel = 0;
-    for (size_t i = 0; i < atomic.rgb.size(); ++i)
-        maxRel = std::max(maxRel, std::fabs(double(atomic.rgb[i]) - many.rgb[i]) / (std::fabs(double(many.rgb[i])) + 1e-3));
-    EXPECT_LT(maxRel, 1e-4);
+    EXPECT_LT(maxRelativeDifference(atomic, many), 1e-4);
 }
 
 // A render saved after some iterations and resumed in a new renderer ends with the image an
 // uninterrupted render gives (sort splats: bit for bit), with the same counters.
 TEST(MltCheckpoint, ASavedAndResumedRenderEqualsAnUninterruptedOne) {
-    Scene scene = loadScene(sourcePath("scenes/cornell-box/scene.xml"), {{"width", "16"}, {"height", "12"}});
-    const Accel accel(scene, AccelKind::Embree);
-    MltSettings s = smallSettings();
-    s.chains = 64;
-    s.bootstrapSamples = 2048;
-    s.splat = MltSplatKind::Sort;
-    const PathSettings path = pathSettingsFrom(scene.integrator);
-    MltRenderer whole(scene, accel, path, s, 5);
+    SmallCornellBox box(16, 12, 64, 2048);
+    box.settings.splat = MltSplatKind::Sort;
+    MltRenderer whole = box.renderer(box.settings, 5);
     whole.bootstrap();
     for (int i = 0; i < 8; ++i) whole.iterate();
 
     std::stringstream file;
     {
-        MltRenderer first(scene, accel, path, s, 5);
+        MltRenderer first = box.renderer(box.settings, 5);
         first.bootstrap();
         for (int i = 0; i < 3; ++i) first.iterate();
         ASSERT_TRUE(first.resumable());
         first.save(file);
     }
-    MltRenderer resumed(scene, accel, path, s, 5);
+    MltRenderer resumed = box.renderer(box.settings, 5);
     EXPECT_FALSE(resumed.started());
     resumed.load(file);
     EXPECT_TRUE(resumed.started());
@@ -195,20 +170,16 @@ TEST(MltCheckpoint, ASavedAndResumedRenderEqualsAnUninterruptedOne) {
 
 // Other settings, a damaged file or a truncated one: a clear error, and the renderer is untouched.
 TEST(MltCheckpoint, MismatchedOrDamagedCheckpointsAreRefused) {
-    Scene scene = loadScene(sourcePath("scenes/cornell-box/scene.xml"), {{"width", "8"}, {"height", "8"}});
-    const Accel accel(scene, AccelKind::Embree);
-    MltSettings s = smallSettings();
-    s.chains = 16;
-    s.bootstrapSamples = 256;
-    const PathSettings path = pathSettingsFrom(scene.integrator);
-    MltRenderer saved(scene, accel, path, s, 1);
+    const SmallCornellBox box(8, 8, 16, 256);
+    const MltSettings& s = box.settings;
+    MltRenderer saved = box.renderer(s, 1);
     saved.bootstrap();
     saved.iterate();
     std::stringstream file;
     saved.save(file);
     const std::string bytes = file.str();
     auto loadInto = [&](const MltSettings& settings, uint64_t seed, const std::string& data) -> std::string {
-        MltRenderer r(scene, accel, path, settings, seed);
+        MltRenderer r = box.renderer(settings, seed);
         std::stringstream in(data);
         try {
             r.load(in);
@@ -231,13 +202,9 @@ TEST(MltCheckpoint, MismatchedOrDamagedCheckpointsAreRefused) {
 }
 
 TEST(MltErrors, ABlackSceneIsAClearError) {
-    Scene scene = loadScene(sourcePath("scenes/cornell-box/scene.xml"), {{"width", "8"}, {"height", "8"}});
-    for (Light& l : scene.lights) l.radiance = Spectrum(0);
-    const Accel accel(scene, AccelKind::Embree);
-    MltSettings s = smallSettings();
-    s.chains = 16;
-    s.bootstrapSamples = 256;
-    MltRenderer mlt(scene, accel, pathSettingsFrom(scene.integrator), s, 1);
+    SmallCornellBox box(8, 8, 16, 256);
+    for (Light& l : box.scene.lights) l.radiance = Spectrum(0);  // the accelerator holds geometry only
+    MltRenderer mlt = box.renderer(box.settings, 1);
     EXPECT_THROW(mlt.bootstrap(), Error);
 }
 

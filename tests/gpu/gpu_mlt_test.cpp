@@ -1,34 +1,35 @@
 // gpu_mlt_test.cpp — Metropolis light transport on the GPU (cuda/gpu_mlt.h): GPU MLT renders of
 // cornell-box (64x64) against the Mitsuba 3 reference the CPU driver is tested against
-// (tests/e2e/mlt_test.cpp; the block statistics of tests/common/block_agreement.h), atomic against sort splats, the
-// statistics the driver fills, and its errors. Built only with the CUDA backend (target
+// (tests/e2e/mlt_test.cpp; the checks of tests/common/mlt_reference_check.h), atomic against sort
+// splats, the statistics the driver fills, checkpoints (resumed = uninterrupted; a CPU
+// checkpoint resumes on the GPU), and its errors. Built only with the CUDA backend (target
 // caustica_gpu_tests); every test that needs a GPU skips when cudaGetDeviceCount finds none.
 #include <gtest/gtest.h>
 
-#include <algorithm>
-#include <cmath>
-#include <cstdio>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "caustica/accel/accel.h"
-#include "caustica/film/filter.h"
 #include "caustica/integrators/mlt/mlt_loop.h"
 #include "caustica/integrators/path/path_integrator.h"
-#include "caustica/io/image_io.h"
 #include "caustica/io/scene_loader.h"
 #include "caustica/util/error.h"
-#include "common/block_agreement.h"
+#include "common/mlt_reference_check.h"
 #include "cuda/cuda_backend.h"
 #include "cuda/gpu_mlt.h"
 
 namespace caustica {
 namespace {
 
-std::string sourcePath(const std::string& relative) {
-    return std::string(CAUSTICA_SOURCE_DIR) + "/" + relative;
-}
+using test::checkMltAgainstReference;
+using test::maxRelativeDifference;
+using test::MltCase;
+using test::smallMltSettings;
+using test::splatComparisonScene;
+using test::splatComparisonSettings;
+using test::sourcePath;
 
 class GpuMlt : public ::testing::Test {
 protected:
@@ -38,13 +39,6 @@ protected:
             GTEST_SKIP() << "no CUDA GPU on this machine (cudaGetDeviceCount is 0): GPU MLT not exercised";
     }
 };
-
-MltSettings smallSettings() {
-    MltSettings s;
-    s.chains = 4096;
-    s.bootstrapSamples = 1 << 17;
-    return s;
-}
 
 Image renderGpuMlt(const Scene& scene, const Accel& accel, const MltSettings& settings, uint64_t seed,
                    double mutationsPerPixel, MltStats* stats = nullptr) {
@@ -57,38 +51,23 @@ Image renderGpuMlt(const Scene& scene, const Accel& accel, const MltSettings& se
     return mlt->develop();
 }
 
-using test::Agreement;
-using test::BlockStats;
-using test::blocksOfReference;
-using test::blocksOfRuns;
-using test::compare;
-
 /// R GPU MLT runs of cornell-box (64x64, 96 mutations per pixel) against the Mitsuba reference;
 /// with `checkPower`, an 8% brighter image must be rejected by the same statistics.
 void checkAgainstReference(const MltSettings& settings, bool checkPower, int runs = 6) {
-    const std::string ref = sourcePath("scenes/cornell-box/reference/cornell-box-64");
-    const Image mean = readImage(ref + ".exr"), var = readImage(ref + ".var.exr");
-    const Scene scene = loadScene(sourcePath("scenes/cornell-box/scene.xml"),
-                                  {{"width", std::to_string(mean.width)}, {"height", std::to_string(mean.height)}});
-    const Accel accel(scene, AccelKind::Bvh);
-    std::vector<Image> images;
-    for (int r = 0; r < runs; ++r) images.push_back(renderGpuMlt(scene, accel, settings, 100 + uint64_t(r), 96));
-    const BlockStats ours = blocksOfRuns(images), theirs = blocksOfReference(mean, var);
-    const Agreement a = compare(ours, theirs);
-    std::printf("gpu mlt (k=%u, %s, sort every %u): block mean z^2 %.2f, image-mean z %.2f, bias %+.2f%%\n",
-                settings.proposals, settings.splat == MltSplatKind::Atomic ? "atomic" : "sort", settings.sortEvery,
-                a.meanZ2, a.imageZ, 100 * a.relBias);
-    EXPECT_TRUE(a.passed(runs)) << "block mean z^2 " << a.meanZ2 << ", image-mean z " << a.imageZ;
-    if (!checkPower) return;
-    const Agreement wrong = compare(ours, theirs, 1.08);
-    EXPECT_FALSE(wrong.passed(runs)) << "an 8% error is not detected: mean z^2 " << wrong.meanZ2;
+    const MltCase box{"scenes/cornell-box/scene.xml", "scenes/cornell-box/reference/cornell-box-64",
+                      96, 0.08};
+    checkMltAgainstReference(box, settings, AccelKind::Bvh, "gpu mlt", checkPower, runs,
+                             [](const Scene& scene, const Accel& accel, const MltSettings& s,
+                                uint64_t seed, double mpp) {
+                                 return renderGpuMlt(scene, accel, s, seed, mpp);
+                             });
 }
 
-TEST_F(GpuMlt, CornellBoxMatchesReference) { checkAgainstReference(smallSettings(), true); }
+TEST_F(GpuMlt, CornellBoxMatchesReference) { checkAgainstReference(smallMltSettings(), true); }
 
 // Sort splats, two proposals (split transitions) and Morton sorting (the permutation kernels).
 TEST_F(GpuMlt, CornellBoxSortSplatsTwoProposalsMortonSortedMatchesReference) {
-    MltSettings s = smallSettings();
+    MltSettings s = smallMltSettings();
     s.splat = MltSplatKind::Sort;
     s.proposals = 2;
     s.sortEvery = 4;
@@ -99,28 +78,20 @@ TEST_F(GpuMlt, CornellBoxSortSplatsTwoProposalsMortonSortedMatchesReference) {
 // splats), so atomic and sort splats give the same image up to the order of float additions; sort
 // splats are bit-identical from run to run.
 TEST_F(GpuMlt, AtomicAndSortSplatsAgree) {
-    Scene scene = loadScene(sourcePath("scenes/cornell-box/scene.xml"), {{"width", "24"}, {"height", "16"}});
-    scene.film.filter = FilterDesc{FilterType::Gaussian, 2.0f, 0.5f};
+    const Scene scene = splatComparisonScene();
     const Accel accel(scene, AccelKind::Bvh);
-    MltSettings s = smallSettings();
-    s.chains = 512;
-    s.bootstrapSamples = 4096;
-    s.sortEvery = 3;
-    s.splat = MltSplatKind::Sort;
+    MltSettings s = splatComparisonSettings();
     const Image sorted = renderGpuMlt(scene, accel, s, 3, 16), again = renderGpuMlt(scene, accel, s, 3, 16);
     EXPECT_EQ(sorted.rgb, again.rgb);
     s.splat = MltSplatKind::Atomic;
     const Image atomic = renderGpuMlt(scene, accel, s, 3, 16);
-    double maxRel = 0;
-    for (size_t i = 0; i < atomic.rgb.size(); ++i)
-        maxRel = std::max(maxRel, std::fabs(double(atomic.rgb[i]) - sorted.rgb[i]) / (std::fabs(double(sorted.rgb[i])) + 1e-3));
-    EXPECT_LT(maxRel, 1e-4);
+    EXPECT_LT(maxRelativeDifference(atomic, sorted), 1e-4);
 }
 
 TEST_F(GpuMlt, StatisticsAreFilled) {
     const Scene scene = loadScene(sourcePath("scenes/cornell-box/scene.xml"), {{"width", "16"}, {"height", "16"}});
     const Accel accel(scene, AccelKind::Bvh);
-    MltSettings s = smallSettings();
+    MltSettings s = smallMltSettings();
     s.chains = 256;
     s.bootstrapSamples = 4096;
     MltStats st;
@@ -138,11 +109,95 @@ TEST_F(GpuMlt, StatisticsAreFilled) {
     EXPECT_GT(st.traceSeconds, 0);
 }
 
+// The CPU checkpoint tests' scene (tests/e2e/mlt_test.cpp), with Morton sorting so that the
+// resumed chains' permutation and the store's transposition are exercised.
+MltSettings checkpointSettings() {
+    MltSettings s = smallMltSettings();
+    s.chains = 256;
+    s.bootstrapSamples = 4096;
+    s.splat = MltSplatKind::Sort;  // bit-identical from run to run
+    s.sortEvery = 2;
+    return s;
+}
+
+// A GPU render saved after some iterations and resumed in a new renderer ends with the image an
+// uninterrupted one gives, bit for bit, with the same counters.
+TEST_F(GpuMlt, ASavedAndResumedRenderEqualsAnUninterruptedOne) {
+    const Scene scene = loadScene(sourcePath("scenes/cornell-box/scene.xml"), {{"width", "16"}, {"height", "12"}});
+    const Accel accel(scene, AccelKind::Bvh);
+    const MltSettings s = checkpointSettings();
+    const PathSettings path = pathSettingsFrom(scene.integrator);
+    const std::unique_ptr<MltRenderer> whole = makeGpuMltRenderer(scene, *accel.bvh(), path, s, 5);
+    whole->bootstrap();
+    for (int i = 0; i < 8; ++i) whole->iterate();
+
+    std::stringstream file;
+    {
+        const std::unique_ptr<MltRenderer> first = makeGpuMltRenderer(scene, *accel.bvh(), path, s, 5);
+        first->bootstrap();
+        for (int i = 0; i < 3; ++i) first->iterate();
+        first->save(file);
+    }
+    const std::unique_ptr<MltRenderer> resumed = makeGpuMltRenderer(scene, *accel.bvh(), path, s, 5);
+    EXPECT_FALSE(resumed->started());
+    resumed->load(file);
+    EXPECT_TRUE(resumed->started());
+    for (int i = 0; i < 5; ++i) resumed->iterate();
+    EXPECT_EQ(resumed->develop().rgb, whole->develop().rgb);
+    EXPECT_EQ(resumed->stats().iterations, whole->stats().iterations);
+    EXPECT_EQ(resumed->stats().accepted, whole->stats().accepted);
+    EXPECT_EQ(resumed->stats().rays, whole->stats().rays);
+    EXPECT_EQ(resumed->stats().b, whole->stats().b);
+}
+
+// Both drivers write the same format (chain-major store): a CPU checkpoint loads into the GPU
+// driver, which develops the same image from it and writes it back byte for byte; then it goes on.
+TEST_F(GpuMlt, ACpuCheckpointResumesOnTheGpu) {
+    const Scene scene = loadScene(sourcePath("scenes/cornell-box/scene.xml"), {{"width", "16"}, {"height", "12"}});
+    const Accel accel(scene, AccelKind::Bvh);
+    const MltSettings s = checkpointSettings();
+    const PathSettings path = pathSettingsFrom(scene.integrator);
+    MltRenderer cpu(scene, accel, path, s, 5);
+    cpu.bootstrap();
+    for (int i = 0; i < 3; ++i) cpu.iterate();
+    std::stringstream cpuFile;
+    cpu.save(cpuFile);
+
+    const std::unique_ptr<MltRenderer> gpu = makeGpuMltRenderer(scene, *accel.bvh(), path, s, 5);
+    std::stringstream in(cpuFile.str());
+    gpu->load(in);
+    EXPECT_EQ(gpu->develop().rgb, cpu.develop().rgb);
+    std::stringstream gpuFile;
+    gpu->save(gpuFile);
+    EXPECT_TRUE(gpuFile.str() == cpuFile.str()) << "the GPU rewrote a CPU checkpoint differently";
+    for (int i = 0; i < 3; ++i) gpu->iterate();
+    EXPECT_EQ(gpu->stats().iterations, 6u);
+    EXPECT_GT(gpu->stats().accepted, cpu.stats().accepted);
+}
+
+// The memory estimate (mlt_gpu_memory.h) refuses, before allocating, a bootstrap of 2^36 samples
+// (768 GiB of bootstrap arrays) with one line that names what to lower.
+TEST_F(GpuMlt, ARenderThatDoesNotFitIsRefusedWithOneLine) {
+    const Scene scene = loadScene(sourcePath("scenes/cornell-box/scene.xml"), {{"width", "8"}, {"height", "8"}});
+    const Accel accel(scene, AccelKind::Bvh);
+    MltSettings s = smallMltSettings();
+    s.bootstrapSamples = uint64_t(1) << 36;
+    try {
+        makeGpuMltRenderer(scene, *accel.bvh(), pathSettingsFrom(scene.integrator), s, 1);
+        FAIL() << "no exception";
+    } catch (const Error& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("GPU memory: MLT needs about"), std::string::npos) << what;
+        EXPECT_NE(what.find("--mlt-bootstrap"), std::string::npos) << what;
+        EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+    }
+}
+
 TEST(GpuMltSettings, FloatStateIsRefusedBeforeTouchingTheGpu) {
     registerCudaBackend();
     const Scene scene = loadScene(sourcePath("scenes/cornell-box/scene.xml"), {{"width", "8"}, {"height", "8"}});
     const Accel accel(scene, AccelKind::Bvh);
-    MltSettings s = smallSettings();
+    MltSettings s = smallMltSettings();
     s.state = MltStateKind::Float;
     try {
         makeGpuMltRenderer(scene, *accel.bvh(), pathSettingsFrom(scene.integrator), s, 1);
@@ -159,7 +214,7 @@ TEST(GpuMltWithoutGpu, ConstructionFailsWithAnError) {
     if (cudaDeviceCountOrZero() > 0) GTEST_SKIP() << "a GPU is present";
     const Scene scene = loadScene(sourcePath("scenes/cornell-box/scene.xml"), {{"width", "8"}, {"height", "8"}});
     const Accel accel(scene, AccelKind::Bvh);
-    EXPECT_THROW(makeGpuMltRenderer(scene, *accel.bvh(), pathSettingsFrom(scene.integrator), smallSettings(), 1),
+    EXPECT_THROW(makeGpuMltRenderer(scene, *accel.bvh(), pathSettingsFrom(scene.integrator), smallMltSettings(), 1),
                  Error);
 }
 

@@ -170,10 +170,12 @@ TEST(MltSplat, SplatPixelSkipsZeroInvalidAndOutsideSplats) {
     MltSplatView v;
     v.width = 4;
     v.height = 3;
-    EXPECT_EQ(splatPixel(v, MltSplat{{1.5f, 2.5f}, Spectrum(1)}), 2u * 4u + 1u);
-    EXPECT_EQ(splatPixel(v, MltSplat{{1.5f, 2.5f}, Spectrum(0)}), kNoPixel);
-    EXPECT_EQ(splatPixel(v, MltSplat{{4.0f, 0.5f}, Spectrum(1)}), kNoPixel);
-    EXPECT_EQ(splatPixel(v, MltSplat{{0.5f, 0.5f}, Spectrum(std::nanf(""))}), kNoPixel);
+    EXPECT_EQ(splatPixel(v, MltSplat{{1.5f, 2.5f}, Spectrum(1), Spectrum(0)}), 2u * 4u + 1u);
+    EXPECT_EQ(splatPixel(v, MltSplat{{1.5f, 2.5f}, Spectrum(0), Spectrum(1)}), 2u * 4u + 1u);  // large step only
+    EXPECT_EQ(splatPixel(v, MltSplat{{1.5f, 2.5f}, Spectrum(0), Spectrum(0)}), kNoPixel);
+    EXPECT_EQ(splatPixel(v, MltSplat{{4.0f, 0.5f}, Spectrum(1), Spectrum(0)}), kNoPixel);
+    EXPECT_EQ(splatPixel(v, MltSplat{{0.5f, 0.5f}, Spectrum(std::nanf("")), Spectrum(0)}), kNoPixel);
+    EXPECT_EQ(splatPixel(v, MltSplat{{0.5f, 0.5f}, Spectrum(1), Spectrum(std::nanf(""))}), kNoPixel);
 }
 
 }  // namespace

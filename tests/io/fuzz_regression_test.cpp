@@ -91,5 +91,30 @@ TEST(FuzzRegression, PngHeaderClaimingAHugeImage) {
     expectCleanError([&] { readImage(bad); }, "corrupt or truncated data");
 }
 
+// fuzz_image found a 103-byte PNG whose last chunk header claims 0x6000001f bytes of IDAT: stb
+// allocated 2 GiB for the chunk before finding the file short (out-of-memory under the fuzzer).
+TEST(FuzzRegression, PngChunkLongerThanFile) {
+    TempDir dir;
+    const std::string good = dir.path("good.png");
+    writeImage(good, Image(2, 2));
+    const std::string bytes = readBytes(good);
+    ASSERT_EQ(bytes.compare(12, 4, "IHDR"), 0);
+    // Signature (8 bytes) and IHDR (25 bytes), then an IDAT claiming far more than follows.
+    auto withIdatOfLength = [&](const std::string& length) {
+        return bytes.substr(0, 33) + length + "IDAT" + std::string("\x78\x01\x00\x00", 4);
+    };
+    const std::string huge =
+        dir.write("huge_idat.png", withIdatOfLength(std::string("\x7f\xff\x00\x00", 4)));
+    const std::string reason = "PNG chunk 'IDAT' length 2147418112";
+    expectCleanError([&] { readImage(huge); }, reason);
+    expectCleanError([&] { readImageMetadata(huge); }, reason);
+    // Beyond PNG's own limit of 2^31 - 1.
+    expectCleanError(
+        [&] { readImage(dir.write("over.png", withIdatOfLength("\xff\xff\xff\xf0"))); },
+        "PNG chunk 'IDAT' length 4294967280");
+    // The unpatched file still reads.
+    EXPECT_EQ(readImage(good).width, 2);
+}
+
 }  // namespace
 }  // namespace caustica::test

@@ -407,14 +407,49 @@ Image imageFromStb(const T* pixels, int w, int h, float maxValue, bool raw) {
     return image;
 }
 
-/// PNG or JPEG (8 or 16 bits per channel, sRGB-encoded) via stb; decoded to linear unless
-/// `raw`. `magic` is the signature the format requires.
-Image readLdr(const std::string& path, const ImageReadOptions& options, ImageFileInfo* info,
-              const Bytes& magic, const char* formatName) {
+const Bytes kPngMagic = {137, 80, 78, 71, 13, 10, 26, 10};
+const Bytes kJpegMagic = {0xFF, 0xD8, 0xFF};
+
+/// Calls `f(type, body, length)` for each chunk of the PNG file `data` up to IEND, refusing a chunk
+/// whose length (data, then a 4-byte CRC) runs past the end of the file or PNG's limit of 2^31-1:
+/// stb allocates a chunk's claimed length before reading it (found by fuzzing: a 103-byte PNG
+/// cost 2 GiB). A file ending after complete chunks without IEND is left to the decoder.
+template <class F>
+void forEachPngChunk(const std::string& path, const Bytes& data, F&& f) {
+    if (data.size() < 8 || !std::equal(kPngMagic.begin(), kPngMagic.end(), data.begin()))
+        throw Error(path, 0, "corrupt header: not a PNG file");
+    for (size_t pos = 8; pos + 8 <= data.size();) {
+        const uint32_t length = readBe32(&data[pos]);
+        std::string type;
+        for (size_t i = pos + 4; i < pos + 8; ++i) {
+            char hex[5];
+            std::snprintf(hex, sizeof hex, "\\x%02x", data[i]);
+            type += std::isalpha(data[i]) ? std::string(1, char(data[i])) : hex;
+        }
+        const size_t left = data.size() - pos - 8;
+        if (length > 0x7fffffffu || size_t(length) + 4 > left)
+            throw Error(path, 0,
+                        "corrupt or truncated data: PNG chunk '" + type + "' length " +
+                            std::to_string(length) + " (+ 4 bytes CRC) exceeds the " +
+                            std::to_string(left) + " bytes left in the file");
+        f(type, &data[pos + 8], size_t(length));
+        if (type == "IEND") return;
+        pos += 12 + size_t(length);
+    }
+}
+
+/// PNG or JPEG (`format`; 8 or 16 bits per channel, sRGB-encoded) via stb; decoded to linear
+/// unless `raw`.
+Image readLdr(const std::string& path, Format format, const ImageReadOptions& options,
+              ImageFileInfo* info) {
     const Bytes data = readFile(path);
     if (data.size() > size_t(INT32_MAX)) throw Error(path, 0, "file too large");
-    if (data.size() < magic.size() || !std::equal(magic.begin(), magic.end(), data.begin()))
-        throw Error(path, 0, std::string("corrupt header: not a ") + formatName + " file");
+    if (format == Format::Png) {
+        forEachPngChunk(path, data, [](auto&&...) {});
+    } else if (data.size() < kJpegMagic.size() ||
+               !std::equal(kJpegMagic.begin(), kJpegMagic.end(), data.begin())) {
+        throw Error(path, 0, "corrupt header: not a JPEG file");
+    }
     const int size = int(data.size());
     int w = 0, h = 0, n = 0;
     if (!stbi_info_from_memory(data.data(), size, &w, &h, &n))
@@ -451,29 +486,16 @@ Image readHdr(const std::string& path, ImageFileInfo* info) {
     return image;
 }
 
-const Bytes kPngMagic = {137, 80, 78, 71, 13, 10, 26, 10};
-const Bytes kJpegMagic = {0xFF, 0xD8, 0xFF};
-
 ImageMetadata readPngMetadata(const std::string& path) {
-    const Bytes data = readFile(path);
-    static const unsigned char kSignature[8] = {137, 80, 78, 71, 13, 10, 26, 10};
-    if (data.size() < 8 || std::memcmp(data.data(), kSignature, 8) != 0)
-        throw Error(path, 0, "corrupt header: not a PNG file");
     ImageMetadata metadata;
-    size_t pos = 8;
-    while (pos + 12 <= data.size()) {
-        const size_t len = readBe32(data.data() + pos);
-        if (len > data.size() - pos - 12)
-            throw Error(path, 0, "truncated data: chunk overruns file");
-        const unsigned char* type = data.data() + pos + 4;
-        const unsigned char* body = type + 4;
-        if (std::memcmp(type, "tEXt", 4) == 0) {
-            const auto* zero = static_cast<const unsigned char*>(std::memchr(body, 0, len));
-            if (zero) metadata.entries[std::string(body, zero)] = std::string(zero + 1, body + len);
-        }
-        if (std::memcmp(type, "IEND", 4) == 0) break;
-        pos += 12 + len;
-    }
+    forEachPngChunk(
+        path, readFile(path),
+        [&](const std::string& type, const unsigned char* body, size_t length) {
+            if (type != "tEXt") return;
+            const auto* zero = static_cast<const unsigned char*>(std::memchr(body, 0, length));
+            if (zero)
+                metadata.entries[std::string(body, zero)] = std::string(zero + 1, body + length);
+        });
     return metadata;
 }
 
@@ -544,9 +566,9 @@ Image readImage(const std::string& path, const ImageReadOptions& options, ImageF
             case Format::Pfm:
                 return readPfm(path);
             case Format::Png:
-                return readLdr(path, options, info, kPngMagic, "PNG");
+                return readLdr(path, format, options, info);
             case Format::Jpeg:
-                return readLdr(path, options, info, kJpegMagic, "JPEG");
+                return readLdr(path, format, options, info);
             case Format::Hdr:
                 return readHdr(path, info);
         }

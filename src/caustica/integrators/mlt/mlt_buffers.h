@@ -26,7 +26,7 @@ struct MltChainBuffers {
     Buffer<uint16_t> usedDims, proposalDims;
     Buffer<uint32_t> proposalRays, largeSteps, accepted, sortKeys, sortValues, pixelStart;
     Buffer<MltSplat> splats;
-    Buffer<double> image;  // 3 splat sums per pixel, all iterations
+    Buffer<double> image;  // kMltValuesPerPixel splat sums per pixel (chain, large-step layer), all iterations
 
     /// n chains with k proposals each on a film of `pixels` pixels; the splat mode decides which
     /// scratch arrays exist. Splat sums start at zero.
@@ -44,10 +44,10 @@ struct MltChainBuffers {
           largeSteps(device, n),
           accepted(device, n),
           splats(device, size_t(n) * (k + 1)),
-          image(device, size_t(3) * pixels) {
+          image(device, size_t(kMltValuesPerPixel) * pixels) {
         image.zero();
         if (splat == MltSplatKind::Atomic) {
-            accum = Buffer<float>(device, size_t(3) * pixels);
+            accum = Buffer<float>(device, size_t(kMltValuesPerPixel) * pixels);
             accum.zero();
         } else {
             sortKeys = Buffer<uint32_t>(device, splats.size());

@@ -14,32 +14,33 @@
 
 namespace caustica {
 
+/// Throws caustica::Error (one line) for settings no driver can run.
+void validateMltSettings(const MltSettings& settings);
+/// Kernel parameters of a render of `scene`; the driver sets iteration, b and pixelWeight.
+MltStepParams mltStepParams(const Scene& scene, const PathSettings& path, const MltSettings& settings,
+                            uint64_t seed);
+
 struct MltRenderer::Impl {
+    /// Validates `settings` (caustica::Error before a driver allocates anything) and fills what
+    /// every driver needs: settings, the kernel parameters and the pixel count.
+    Impl(const Scene& scene, const PathSettings& path, const MltSettings& settings, uint64_t seed);
     virtual ~Impl() = default;
     virtual void bootstrap() = 0;
     virtual uint64_t iterate() = 0;
     virtual Image develop() const = 0;
-    /// Resumable checkpoints: a driver that can write and restore its whole state overrides all
-    /// three; the defaults say it cannot (save/load throw caustica::Error).
-    virtual bool resumable() const { return false; }
-    virtual void save(std::ostream& out) const;
-    virtual void load(std::istream& in);
+    /// Resumable checkpoints (mlt_checkpoint.h): the whole state, written and restored.
+    virtual void save(std::ostream& out) const = 0;
+    virtual void load(std::istream& in) = 0;
+    uint32_t pixels() const { return pixels_; }
     MltStats stats;
     MltSettings settings;
-    uint32_t pixels = 0;
     bool started = false;  // bootstrapped, or loaded from a checkpoint
+
+protected:
+    MltStepParams params_;  // iteration and b are set per launch, pixelWeight by the bootstrap
+    uint32_t pixels_ = 0;
 };
 
-/// Throws caustica::Error (one line) for settings no driver can run.
-void validateMltSettings(const MltSettings& settings);
-/// `settings`, validated (for constructors' initialiser lists).
-inline const MltSettings& validatedMltSettings(const MltSettings& settings) {
-    validateMltSettings(settings);
-    return settings;
-}
-/// Kernel parameters of a render of `scene`; the driver sets iteration, b and pixelWeight.
-MltStepParams mltStepParams(const Scene& scene, const PathSettings& path, const MltSettings& settings,
-                            uint64_t seed);
 /// M: settings.bootstrapSamples, or the default for the chain count and image size.
 uint64_t mltBootstrapCount(const MltSettings& settings, uint32_t pixels);
 
@@ -50,22 +51,28 @@ std::vector<uint64_t> mltChainStarts(const float* importance, uint64_t count, ui
                                      uint64_t seed);
 
 /// Running estimate of b = E[I]: the bootstrap mean, refined by every large step's I.
+/// b0, the bootstrap's estimate, stays fixed in the splat weights; the chain layer of the splat
+/// sums is scaled by b / b0 when the image is developed (mlt_kernel.h).
 struct MltNormalisation {
     double sum = 0, count = 0;
+    double b0 = 0;
     void add(double importanceSum, double samples) {
         sum += importanceSum;
         count += samples;
     }
     double b() const { return count > 0 ? sum / count : 0; }
+    /// Factor of the chain layer: b / b0 (1 before the bootstrap).
+    double chainScale() const { return b0 > 0 ? b() / b0 : 1; }
 };
 
-/// Turns the splat sums (3 doubles per pixel, all iterations) into the image: scaled by pixels /
-/// total chain splat weight, divided by the filter's integral squared (the splat and the
-/// density of positions) and by the filter's coverage at the image border.
+/// Turns the splat sums (kMltValuesPerPixel doubles per pixel, all iterations) into the image:
+/// the chain layer times b.chainScale() plus the large-step layer, scaled by pixels / total chain
+/// splat weight, divided by the filter's integral squared (the splat and the density of
+/// positions) and by the filter's coverage at the image border.
 class MltFilm {
 public:
     MltFilm(const FilterDesc& filter, int width, int height);
-    Image develop(const double* sums, double totalWeight) const;
+    Image develop(const double* sums, const MltNormalisation& b, double totalWeight) const;
     const Filter& filter() const { return filter_; }
 
 private:

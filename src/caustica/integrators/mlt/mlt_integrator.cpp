@@ -3,20 +3,19 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstring>
 #include <istream>
-#include <numeric>
 #include <ostream>
 #include <vector>
 
 #include "caustica/film/filter.h"
+#include "caustica/integrators/mlt/mlt_bootstrap.h"
 #include "caustica/integrators/mlt/mlt_buffers.h"
+#include "caustica/integrators/mlt/mlt_checkpoint.h"
 #include "caustica/integrators/mlt/mlt_impl.h"
 #include "caustica/integrators/mlt/mlt_kernel.h"
 #include "caustica/parallel/buffer.h"
 #include "caustica/parallel/device.h"
 #include "caustica/parallel/primitives.h"
-#include "caustica/util/binary_io.h"
 #include "caustica/util/error.h"
 
 namespace caustica {
@@ -52,11 +51,6 @@ size_t mltBytesPerChain(MltStateKind kind, uint32_t storedBounces) {
     return samples + sizeof(Vec2f) + sizeof(Spectrum) + sizeof(float) + sizeof(uint16_t);
 }
 
-void MltRenderer::Impl::save(std::ostream&) const {
-    throw Error("this MLT driver keeps no resumable checkpoint");
-}
-void MltRenderer::Impl::load(std::istream&) { throw Error("this MLT driver keeps no resumable checkpoint"); }
-
 void validateMltSettings(const MltSettings& s) {
     if (s.chains == 0) throw Error("MLT needs at least one chain");
     if (s.proposals == 0 || s.proposals > 64) throw Error("MLT proposals per step must be in 1..64");
@@ -76,6 +70,12 @@ MltStepParams mltStepParams(const Scene& scene, const PathSettings& path, const 
     p.width = scene.film.width;
     p.height = scene.film.height;
     return p;
+}
+
+MltRenderer::Impl::Impl(const Scene& scene, const PathSettings& path, const MltSettings& s, uint64_t seed)
+    : settings(s), params_(mltStepParams(scene, path, s, seed)) {
+    validateMltSettings(s);
+    pixels_ = uint32_t(params_.width) * uint32_t(params_.height);
 }
 
 uint64_t mltBootstrapCount(const MltSettings& s, uint32_t pixels) {
@@ -133,40 +133,34 @@ MltFilm::MltFilm(const FilterDesc& filter, int width, int height)
       coverageX_(borderCoverage(filter_, width)),
       coverageY_(borderCoverage(filter_, height)) {}
 
-Image MltFilm::develop(const double* sums, double totalWeight) const {
+Image MltFilm::develop(const double* sums, const MltNormalisation& b, double totalWeight) const {
     Image out(width_, height_);
     if (totalWeight == 0) return out;
     const double integral = filter_.integral();
     const double scale = double(width_) * double(height_) / totalWeight / (integral * integral);
+    const double chainScale = b.chainScale();
     for (int y = 0; y < height_; ++y)
         for (int x = 0; x < width_; ++x) {
             const size_t pixel = size_t(y) * size_t(width_) + size_t(x);
             const double s = scale / (coverageX_[size_t(x)] * coverageY_[size_t(y)]);
-            for (int c = 0; c < 3; ++c) out.rgb[3 * pixel + size_t(c)] = float(sums[3 * pixel + size_t(c)] * s);
+            const double* sum = sums + kMltValuesPerPixel * pixel;
+            for (int c = 0; c < 3; ++c) out.rgb[3 * pixel + size_t(c)] = float((sum[c] * chainScale + sum[3 + c]) * s);
         }
     return out;
 }
 
 namespace {
 
-constexpr char kMltCheckpointMagic[8] = {'C', 'A', 'M', 'L', 'T', 'C', 'K', '1'};
-constexpr uint32_t kMltCheckpointVersion = 1;
-
 template <class Store>
 class MltImpl final : public MltRenderer::Impl {
 public:
     MltImpl(const Scene& scene, const Accel& accel, const PathSettings& path, const MltSettings& s, uint64_t seed)
-        : scene_(scene),
+        : Impl(scene, path, s, seed),
+          scene_(scene),
           accel_(accel),
           device_(Device::cpu()),
           film_(scene.film.filter, scene.film.width, scene.film.height),
-          buf_(device_, validatedMltSettings(s).chains, s.proposals,
-               uint32_t(scene.film.width) * uint32_t(scene.film.height), s.splat) {
-        settings = s;
-        params_ = mltStepParams(scene, path, s, seed);
-        pixels_ = uint32_t(params_.width) * uint32_t(params_.height);
-        pixels = pixels_;
-
+          buf_(device_, s.chains, s.proposals, pixels_, s.splat) {
         const uint32_t n = s.chains;
         const uint32_t bounces = mltStoredBounces(path);
         allocateStore(n, bounces);
@@ -181,45 +175,38 @@ public:
         const auto t0 = Clock::now();
         const uint32_t n = settings.chains;
         const uint64_t m = mltBootstrapCount(settings, pixels_);
-        Buffer<float> importance(device_, m);
-        Buffer<uint32_t> pixelOf(device_, m), rays(device_, m);
-        Span<float> I = importance.span();
-        uint32_t* pixel = pixelOf.data();
+        std::vector<float> importance(m);  // host memory: the CPU driver's device
+        std::vector<uint32_t> pixel(m);
+        Buffer<uint32_t> rays(device_, m);
+        float* I = importance.data();
+        uint32_t* px = pixel.data();
         uint32_t* r = rays.data();
-        MltStepParams p = params_;
+        MltStepParams p = params_;  // luminances first: pixelWeight is still null
         accel_.visit([&](const auto& intersector) {
             parallelFor(device_, "mlt.bootstrap", m, [&](size_t i) {
                 r[i] = 0;
-                I[i] = bootstrapImportance<Store>(scene_.view(), intersector, p, i, r[i], pixel[i]);
+                I[i] = bootstrapImportance<Store>(scene_.view(), intersector, p, i, r[i], px[i]);
             }, 64);
         });
-        stats.rays += std::accumulate(r, r + m, uint64_t(0));
-        if (settings.target == MltTarget::Relative) {
-            // The samples above are luminances; weigh them by the pixel weights they define.
-            pixelWeight_ = mltRelativePixelWeights(I.data(), pixel, m, params_.width, params_.height);
-            params_.pixelWeight = pixelWeight_.data();
-            p.pixelWeight = params_.pixelWeight;
-            parallelFor(device_, "mlt.bootstrap_target", m, [&](size_t i) { I[i] *= pixelWeight_[pixel[i]]; }, 4096);
-        }
-        // b = E[I]: the bootstrap mean (refined later by the large steps).
-        const double sum = reduceSum(device_, asConst(I));
-        stats.bootstrapSamples = m;
-        b_.add(sum, double(m));
-        stats.b = b_.b();
-        if (!(sum > 0))
-            throw Error("MLT: none of the " + std::to_string(m) +
-                        " bootstrap paths carries light (the image is black); check the emitters");
-        const std::vector<uint64_t> start = mltChainStarts(I.data(), m, n, settings.start, params_.seed);
+        stats.rays += reduceSum(device_, rays.constSpan());
+        const MltBootstrapPlan plan =
+            planMltBootstrap(importance, pixel, settings, params_.width, params_.height, params_.seed);
+        pixelWeight_ = plan.pixelWeight;
+        params_.pixelWeight = pixelWeight_.empty() ? nullptr : pixelWeight_.data();
+        p.pixelWeight = params_.pixelWeight;
+        adoptMltBootstrap(plan, m, b_, stats);
+        const std::vector<uint64_t>& start = plan.starts;
         const MltChainView<Store> v = view();
-        std::vector<uint32_t> startRays(n);
+        Buffer<uint32_t> startRays(device_, n);
+        uint32_t* sr = startRays.data();
         accel_.visit([&](const auto& intersector) {
             parallelFor(device_, "mlt.start", n, [&](size_t c) {
                 uint32_t r = 0;
                 startChain(scene_.view(), intersector, v, p, uint32_t(c), start[c], r);
-                startRays[c] = r;
+                sr[c] = r;
             }, 64);
         });
-        stats.rays += std::accumulate(startRays.begin(), startRays.end(), uint64_t(0));
+        stats.rays += reduceSum(device_, startRays.constSpan());
         stats.bootstrapSeconds = secondsSince(t0);
         started = true;
     }
@@ -228,7 +215,7 @@ public:
         const uint32_t n = settings.chains, k = settings.proposals;
         MltStepParams p = params_;
         p.iteration = uint32_t(stats.iterations);
-        p.b = float(stats.b);
+        p.b = float(b_.b0);
         const MltChainView<Store> v = view();
 
         return mltTimedIteration(
@@ -248,124 +235,39 @@ public:
     }
 
     Image develop() const override {
-        return film_.develop(buf_.image.data(), double(settings.chains) * settings.proposals * double(stats.iterations));
+        return film_.develop(buf_.image.data(), b_, double(settings.chains) * settings.proposals * double(stats.iterations));
     }
 
-    bool resumable() const override { return true; }
-
-    // ---- checkpoint: everything a resumed render needs, checked against the settings ----------
-    //   char[8] magic | u32 version | u64 values that must match (named in mltCheckpointKeys)
-    //   stats | b | pixel weights | chain state arrays | splat sums | u64 FNV-1a hash
     void save(std::ostream& out) const override {
-        BinaryWriter w(out, "MLT checkpoint");
-        w.bytes(kMltCheckpointMagic, sizeof kMltCheckpointMagic);
-        w.u32(kMltCheckpointVersion);
-        for (const auto& [name, value] : checkpointKeys()) w.u64(value);
-        w.u64(stats.iterations);
-        w.u64(stats.proposals);
-        w.u64(stats.accepted);
-        w.u64(stats.rays);
-        w.u64(stats.largeSteps);
-        w.u64(stats.bootstrapSamples);
-        for (double t : {stats.bootstrapSeconds, stats.traceSeconds, stats.advanceSeconds, stats.splatSeconds,
-                         stats.sortSeconds})
-            w.f64(t);
-        w.f64(b_.sum);
-        w.f64(b_.count);
-        w.array(pixelWeight_.data(), pixelWeight_.size());
-        w.array(fine_.data(), fine_.size());
-        w.array(coarse_.data(), coarse_.size());
-        w.array(values_.data(), values_.size());
-        w.array(buf_.pos.data(), buf_.pos.size());
-        w.array(buf_.value.data(), buf_.value.size());
-        w.array(buf_.importance.data(), buf_.importance.size());
-        w.array(buf_.usedDims.data(), buf_.usedDims.size());
-        w.array(buf_.image.data(), buf_.image.size());
-        w.u64(w.hash());
+        MltCheckpoint c = mltCheckpointOf(stats, b_, buf_);
+        c.pixelWeight = pixelWeight_;
+        c.fine = fine_.toHost();  // chain-major already: the checkpoint's layout
+        c.coarse = coarse_.toHost();
+        c.values = values_.toHost();
+        writeMltCheckpoint(out, checkpointKeys(), c);
     }
 
     void load(std::istream& in) override {
-        BinaryReader r(in, "MLT checkpoint");
-        char magic[sizeof kMltCheckpointMagic];
-        r.bytes(magic, sizeof magic);
-        if (std::memcmp(magic, kMltCheckpointMagic, sizeof magic) != 0)
-            throw Error("MLT checkpoint: not an MLT checkpoint (bad magic number)");
-        if (const uint32_t version = r.u32(); version != kMltCheckpointVersion)
-            throw Error("MLT checkpoint: unsupported version " + std::to_string(version));
-        for (const auto& [name, value] : checkpointKeys())
-            if (const uint64_t saved = r.u64(); saved != value)
-                throw Error(std::string("MLT checkpoint: rendered with ") + name + " " + std::to_string(saved) +
-                            ", this render has " + std::to_string(value) + "; resume with the same settings");
-        MltStats s = stats;
-        s.iterations = r.u64();
-        s.proposals = r.u64();
-        s.accepted = r.u64();
-        s.rays = r.u64();
-        s.largeSteps = r.u64();
-        s.bootstrapSamples = r.u64();
-        for (double* t : {&s.bootstrapSeconds, &s.traceSeconds, &s.advanceSeconds, &s.splatSeconds, &s.sortSeconds})
-            *t = r.f64();
-        MltNormalisation b;
-        b.sum = r.f64();
-        b.count = r.f64();
-        // Read everything into copies first: a damaged file leaves this renderer untouched.
-        std::vector<float> weights(settings.target == MltTarget::Relative ? pixels_ : 0);
-        r.array(weights.data(), weights.size(), "pixel weights");
-        auto copyOf = [&](auto& buffer, const char* name) {
-            std::vector<std::remove_reference_t<decltype(*buffer.data())>> v(buffer.size());
-            r.array(v.data(), v.size(), name);
-            return v;
-        };
-        auto fine = copyOf(fine_, "fine state");
-        auto coarse = copyOf(coarse_, "coarse state");
-        auto values = copyOf(values_, "float state");
-        auto pos = copyOf(buf_.pos, "positions");
-        auto value = copyOf(buf_.value, "values");
-        auto importance = copyOf(buf_.importance, "importances");
-        auto used = copyOf(buf_.usedDims, "used dimensions");
-        auto image = copyOf(buf_.image, "splat sums");
-        r.checkHash();
-        // Everything read and checked: commit.
-        auto commit = [](const auto& v, auto& buffer) { std::copy(v.begin(), v.end(), buffer.data()); };
-        commit(fine, fine_);
-        commit(coarse, coarse_);
-        commit(values, values_);
-        commit(pos, buf_.pos);
-        commit(value, buf_.value);
-        commit(importance, buf_.importance);
-        commit(used, buf_.usedDims);
-        commit(image, buf_.image);
-        pixelWeight_ = std::move(weights);
+        MltCheckpointSizes sizes;
+        sizes.pixelWeights = settings.target == MltTarget::Relative ? pixels_ : 0;
+        sizes.fine = fine_.size();
+        sizes.coarse = coarse_.size();
+        sizes.values = values_.size();
+        sizes.chains = settings.chains;
+        sizes.image = buf_.image.size();
+        const MltCheckpoint c = readMltCheckpoint(in, checkpointKeys(), sizes, stats);  // throws before any change
+        restoreMltCheckpoint(c, stats, b_, buf_);
+        fine_.copyFromHost(c.fine);
+        coarse_.copyFromHost(c.coarse);
+        values_.copyFromHost(c.values);
+        pixelWeight_ = c.pixelWeight;
         params_.pixelWeight = pixelWeight_.empty() ? nullptr : pixelWeight_.data();
-        b_ = b;
-        s.b = b_.b();
-        stats = s;
         started = true;
     }
 
 private:
-    /// What a checkpoint must agree on with this render to be resumed by it.
-    std::vector<std::pair<const char*, uint64_t>> checkpointKeys() const {
-        auto bits = [](float f) {
-            uint32_t u;
-            std::memcpy(&u, &f, 4);
-            return uint64_t(u);
-        };
-        return {{"width", uint64_t(params_.width)},
-                {"height", uint64_t(params_.height)},
-                {"seed", params_.seed},
-                {"chains", settings.chains},
-                {"proposals", settings.proposals},
-                {"state (0 compact, 1 float)", uint64_t(settings.state)},
-                {"target (0 luminance, 1 relative)", uint64_t(settings.target)},
-                {"stored dimensions", store_.dims},
-                {"large-step probability bits", bits(settings.largeStepProbability)},
-                {"s1 bits", bits(settings.mutation.s1)},
-                {"s2 bits", bits(settings.mutation.s2)},
-                {"max depth", uint64_t(int64_t(params_.path.maxDepth))},
-                {"rr depth", uint64_t(int64_t(params_.path.rrDepth))},
-                {"filter (type x 2^32 + radius bits)",
-                 (uint64_t(film_.filter().type) << 32) | bits(film_.filter().radius)}};
+    MltCheckpointKeys checkpointKeys() const {
+        return mltCheckpointKeys(params_, settings, store_.dims, film_.filter());
     }
 
     void allocateStore(uint32_t n, uint32_t bounces) {
@@ -462,8 +364,6 @@ private:
     const Scene& scene_;
     const Accel& accel_;
     Device device_;
-    MltStepParams params_;
-    uint32_t pixels_ = 0;
     MltFilm film_;
     MltChainBuffers buf_;
     Store store_;
@@ -491,11 +391,11 @@ Image MltRenderer::develop() const { return impl_->develop(); }
 const MltStats& MltRenderer::stats() const { return impl_->stats; }
 const MltSettings& MltRenderer::settings() const { return impl_->settings; }
 bool MltRenderer::started() const { return impl_->started; }
-bool MltRenderer::resumable() const { return impl_->resumable(); }
+bool MltRenderer::resumable() const { return true; }
 void MltRenderer::save(std::ostream& out) const { impl_->save(out); }
 void MltRenderer::load(std::istream& in) { impl_->load(in); }
 double MltRenderer::mutationsPerPixel() const {
-    return impl_->pixels > 0 ? double(impl_->stats.proposals) / double(impl_->pixels) : 0;
+    return impl_->pixels() > 0 ? double(impl_->stats.proposals) / double(impl_->pixels()) : 0;
 }
 
 }  // namespace caustica

@@ -19,6 +19,11 @@
 // contributes (w + [x is a large-step proposal]) F(x) / (I(x) / b + pLarge); the driver divides
 // by k x chains x iterations. With pLarge = 0 this is plain MLT (w b F / I); where I is small the
 // large steps' path-tracing estimate takes over, which keeps dark pixels from starving.
+// The b in those weights is fixed for the whole render (the bootstrap's estimate b0): any b0 > 0
+// gives valid balance weights, but the chain part then estimates (b0 / b) times its share of the
+// image, b the true normalisation. So the two parts go to separate layers and the driver scales
+// the chain layer by b / b0 at the end, b estimated from every sample so far — the early
+// estimate's error does not stay in the image.
 #pragma once
 
 #include <cstdint>
@@ -36,7 +41,7 @@ struct MltStepParams {
     uint32_t iteration = 0;
     uint32_t proposals = 1;            // k
     Float largeStepProbability = 0.1f;
-    float b = 1;                       // current estimate of E[I], for the splat weights
+    float b = 1;                       // b0: the bootstrap's estimate of E[I], for the splat weights
     // Target I = luminance(F) x pixelWeight[pixel] when set (relative target: the inverse of a
     // smoothed estimate of the pixel's brightness, so every pixel draws about equal effort);
     // plain luminance when null.
@@ -147,11 +152,12 @@ CA_HD void advanceChain(const MltChainView<Store>& v, const MltStepParams& p, ui
         // A chain started where I = 0 (uniform start only) accepts any proposal.
         const float a = Ix > 0 ? min(1.0f, Iy / Ix) : 1.0f;
         sumA += a;
-        splats[1 + j] = MltSplat{v.proposalPos[item],
-                                 mltSplatValue(v.proposalValue[item], Iy, a + (large ? 1.0f : 0.0f), p)};
+        const Spectrum Fy = v.proposalValue[item];
+        splats[1 + j] = MltSplat{v.proposalPos[item], mltSplatValue(Fy, Iy, a, p),
+                                 large ? mltSplatValue(Fy, Iy, 1.0f, p) : Spectrum(0)};
     }
     const float stay = max(0.0f, float(k) - sumA);
-    splats[0] = MltSplat{v.pos[chain], mltSplatValue(v.value[chain], Ix, stay, p)};
+    splats[0] = MltSplat{v.pos[chain], mltSplatValue(v.value[chain], Ix, stay, p), Spectrum(0)};
     v.largeStepSum[chain] = largeSum;
     v.largeSteps[chain] = largeCount;
 

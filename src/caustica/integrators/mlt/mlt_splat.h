@@ -18,11 +18,18 @@
 
 namespace caustica {
 
-/// One splat: `value` (already multiplied by its Metropolis weight) at film position `pos`.
+/// One splat at film position `pos`, in two layers: `value`, the chain's part (already multiplied
+/// by its Metropolis weight; the driver scales this layer by its final estimate of b when it
+/// develops the image), and `largeValue`, the large-step proposal's ordinary Monte Carlo part.
 struct MltSplat {
     Vec2f pos;
     Spectrum value;
+    Spectrum largeValue;
 };
+
+/// Values per pixel in the splat sums: chain r, g, b, then large-step r, g, b.
+inline constexpr int kMltSplatLayers = 2;
+inline constexpr int kMltValuesPerPixel = 3 * kMltSplatLayers;
 
 inline constexpr uint32_t kNoPixel = 0xffffffffu;
 
@@ -33,16 +40,17 @@ struct MltSplatView {
     int footprint = 0;                 // filter.footprint()
     const MltSplat* splats = nullptr;
     uint32_t count = 0;
-    float* accum = nullptr;            // atomic: 3 floats per pixel, this iteration
+    float* accum = nullptr;            // atomic: kMltValuesPerPixel floats per pixel, this iteration
     const uint32_t* sortedPixel = nullptr;  // sort: pixel key of each splat, ascending
     const uint32_t* sortedSplat = nullptr;  // sort: splat index, in key order
     const uint32_t* pixelStart = nullptr;   // sort: first sorted entry of pixel p (pixels + 1)
-    double* image = nullptr;           // 3 doubles per pixel, all iterations
+    double* image = nullptr;           // kMltValuesPerPixel doubles per pixel, all iterations
 };
 
 /// The pixel a splat falls in, kNoPixel for a zero or invalid splat (those are skipped).
 CA_HD_INLINE uint32_t splatPixel(const MltSplatView& v, const MltSplat& s) {
-    if (!(s.value.maxValue() > 0) || !s.value.isValid()) return kNoPixel;
+    if (!(s.value.maxValue() > 0 || s.largeValue.maxValue() > 0) || !s.value.isValid() || !s.largeValue.isValid())
+        return kNoPixel;
     if (!(s.pos.x >= 0 && s.pos.y >= 0 && s.pos.x < Float(v.width) && s.pos.y < Float(v.height)))
         return kNoPixel;
     const int x = min(int(s.pos.x), v.width - 1), y = min(int(s.pos.y), v.height - 1);
@@ -61,19 +69,23 @@ CA_HD_INLINE void splatAtomic(const MltSplatView& v, uint32_t i) {
         for (int x = max(0, sx - v.footprint); x <= min(v.width - 1, sx + v.footprint); ++x) {
             const Float w = wy * v.filter.eval(s.pos.x - (Float(x) + 0.5f));
             if (w == 0) continue;
-            float* a = v.accum + 3 * (size_t(y) * size_t(v.width) + size_t(x));
+            float* a = v.accum + kMltValuesPerPixel * (size_t(y) * size_t(v.width) + size_t(x));
             atomicAddFloat(a + 0, w * s.value.r);
             atomicAddFloat(a + 1, w * s.value.g);
             atomicAddFloat(a + 2, w * s.value.b);
+            if (!(s.largeValue.maxValue() > 0)) continue;  // most splats are not large steps
+            atomicAddFloat(a + 3, w * s.largeValue.r);
+            atomicAddFloat(a + 4, w * s.largeValue.g);
+            atomicAddFloat(a + 5, w * s.largeValue.b);
         }
     }
 }
 
 /// After atomic splatting, one work item per pixel: moves this iteration's sums into the image.
 CA_HD_INLINE void flushAtomicPixel(const MltSplatView& v, uint32_t pixel) {
-    for (int c = 0; c < 3; ++c) {
-        v.image[3 * size_t(pixel) + c] += double(v.accum[3 * size_t(pixel) + c]);
-        v.accum[3 * size_t(pixel) + c] = 0;
+    for (int c = 0; c < kMltValuesPerPixel; ++c) {
+        v.image[kMltValuesPerPixel * size_t(pixel) + c] += double(v.accum[kMltValuesPerPixel * size_t(pixel) + c]);
+        v.accum[kMltValuesPerPixel * size_t(pixel) + c] = 0;
     }
 }
 
@@ -92,7 +104,7 @@ CA_HD_INLINE void findPixelStart(uint32_t* pixelStart, const uint32_t* sortedPix
 /// pixels in its filter footprint, in sorted order, and adds them to the image.
 CA_HD_INLINE void gatherSplats(const MltSplatView& v, uint32_t pixel) {
     const int x = int(pixel % uint32_t(v.width)), y = int(pixel / uint32_t(v.width));
-    double r = 0, g = 0, b = 0;
+    double sum[kMltValuesPerPixel] = {};
     for (int sy = max(0, y - v.footprint); sy <= min(v.height - 1, y + v.footprint); ++sy) {
         for (int sx = max(0, x - v.footprint); sx <= min(v.width - 1, x + v.footprint); ++sx) {
             const uint32_t source = uint32_t(sy) * uint32_t(v.width) + uint32_t(sx);
@@ -100,15 +112,14 @@ CA_HD_INLINE void gatherSplats(const MltSplatView& v, uint32_t pixel) {
                 const MltSplat& s = v.splats[v.sortedSplat[e]];
                 const Float w = v.filter.eval(s.pos.x - (Float(x) + 0.5f)) *
                                 v.filter.eval(s.pos.y - (Float(y) + 0.5f));
-                r += double(w * s.value.r);
-                g += double(w * s.value.g);
-                b += double(w * s.value.b);
+                for (int c = 0; c < 3; ++c) {
+                    sum[c] += double(w * s.value[c]);
+                    sum[3 + c] += double(w * s.largeValue[c]);
+                }
             }
         }
     }
-    v.image[3 * size_t(pixel) + 0] += r;
-    v.image[3 * size_t(pixel) + 1] += g;
-    v.image[3 * size_t(pixel) + 2] += b;
+    for (int c = 0; c < kMltValuesPerPixel; ++c) v.image[kMltValuesPerPixel * size_t(pixel) + c] += sum[c];
 }
 
 }  // namespace caustica

@@ -38,10 +38,10 @@ std::vector<double> boxBlur(const std::vector<double>& v, int width, int height,
 }  // namespace
 
 std::vector<float> mltRelativePixelWeights(const float* luminance, const uint32_t* pixel, uint64_t count,
-                                           int width, int height) {
+                                           int width, int height, uint64_t stride) {
     const size_t pixels = size_t(width) * size_t(height);
     std::vector<double> sum(pixels, 0.0);
-    for (uint64_t i = 0; i < count; ++i)
+    for (uint64_t i = 0; i < count * stride; i += stride)
         if (pixel[i] < pixels) sum[pixel[i]] += double(luminance[i]);
     // Samples fall uniformly on the film, so the pixel mean is sum / (count / pixels).
     const double perPixel = double(count) / double(pixels);

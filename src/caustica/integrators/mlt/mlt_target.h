@@ -5,7 +5,8 @@
 // (a visible light, its reflections) draw most mutations. Dividing by B damps them: inside a pixel
 // the chains still follow the paths that carry its light (caustics, small lights) — "arbitrary
 // importance functions" for MLT (Hoberock and Hart 2010). Any positive B leaves the estimate
-// unbiased (the splats divide by I); a poor B only costs efficiency. B is blurred until each
+// unbiased (the splats divide by I) as long as b is estimated from other samples than B
+// (mlt_bootstrap.h); a poor B only costs efficiency. B is blurred until each
 // estimate rests on enough samples and is never less than the image mean: pixels darker than
 // average keep the luminance target's weight. A lower floor (5% of the mean was the first
 // default) sends the chains after pixels whose bootstrap samples happened to be dark — rare
@@ -28,9 +29,10 @@ inline constexpr double kMltTargetSamplesPerEstimate = 64;
 /// B is at least this fraction of its image mean (1: weights never exceed 1).
 inline constexpr double kMltTargetFloor = 1.0;
 
-/// Per-pixel weights 1 / B from `count` bootstrap samples (luminance and pixel index each) on a
-/// width x height film. Every weight is finite and positive; a black bootstrap gives weights 1.
+/// Per-pixel weights 1 / B from `count` bootstrap samples (luminance and pixel index each, the
+/// i-th at index i x stride) on a width x height film. Every weight is finite and positive; a
+/// black bootstrap gives weights 1.
 std::vector<float> mltRelativePixelWeights(const float* luminance, const uint32_t* pixel, uint64_t count,
-                                           int width, int height);
+                                           int width, int height, uint64_t stride = 1);
 
 }  // namespace caustica

@@ -1,0 +1,46 @@
+#include "caustica/integrators/mlt/mlt_gpu_memory.h"
+
+#include <algorithm>
+
+#include "caustica/integrators/mlt/mlt_impl.h"
+#include "caustica/integrators/mlt/mlt_splat.h"
+
+namespace caustica {
+
+size_t mltGpuPermuteScratchBytes(uint32_t chains, uint32_t storedBounces) {
+    const size_t n = chains;
+    const size_t fine = 3 * (kMltCameraDims + 4 * size_t(storedBounces)) * n;  // 3-byte slots
+    const size_t coarse = 3 * size_t(storedBounces) * n * sizeof(uint16_t);
+    return std::max({fine, coarse, n * sizeof(Spectrum), n * sizeof(Vec2f)});
+}
+
+MltGpuMemoryEstimate estimateMltGpuMemory(const MltSettings& s, uint32_t storedBounces,
+                                          uint32_t pixels) {
+    const size_t n = s.chains, proposals = n * s.proposals, splats = n * (size_t(s.proposals) + 1);
+    MltGpuMemoryEstimate e;
+    e.chainState = n * mltBytesPerChain(MltStateKind::Compact, storedBounces);
+    e.chainScratch =
+        proposals * (sizeof(Vec2f) + sizeof(Spectrum) + sizeof(float) + sizeof(uint16_t) +
+                     sizeof(uint32_t)) +
+        n * (sizeof(float) + 2 * sizeof(uint32_t)) +  // large-step sums, large steps, accepted
+        splats * sizeof(MltSplat) + size_t(kMltValuesPerPixel) * pixels * sizeof(double);
+    size_t largestSort = 0;  // bytes of a radix sort's alternate keys and values
+    if (s.splat == MltSplatKind::Atomic) {
+        e.chainScratch += size_t(kMltValuesPerPixel) * pixels * sizeof(float);
+    } else {
+        e.chainScratch += splats * 2 * sizeof(uint32_t) + (size_t(pixels) + 1) * sizeof(uint32_t);
+        largestSort = splats * 2 * sizeof(uint32_t);
+    }
+    if (s.target == MltTarget::Relative) e.pixelWeights = size_t(pixels) * sizeof(float);
+    e.bootstrap = mltBootstrapCount(s, pixels) * kMltBootstrapBytesPerSample +
+                  n * (sizeof(uint64_t) + sizeof(uint32_t));
+    if (s.sortEvery > 0) {
+        e.chainSort = n * (sizeof(uint64_t) + sizeof(uint32_t)) +
+                      mltGpuPermuteScratchBytes(s.chains, storedBounces);
+        largestSort = std::max(largestSort, n * (sizeof(uint64_t) + sizeof(uint32_t)));
+    }
+    e.primitives = largestSort + kMltCubTemporaryBytes;
+    return e;
+}
+
+}  // namespace caustica

@@ -1,0 +1,144 @@
+// mlt_checkpoint_test.cpp — the MLT checkpoint shared by both drivers (mlt_checkpoint.h) on host
+// data: a written checkpoint reads back field for field; keys, sizes and damage are refused by
+// name; the store transposition between the GPU's dimension-major and the file's chain-major
+// layout. Whole renders saved and resumed: tests/e2e/mlt_test.cpp (CPU), tests/gpu (GPU).
+#include <gtest/gtest.h>
+
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "caustica/integrators/mlt/mlt_checkpoint.h"
+#include "caustica/util/error.h"
+
+namespace caustica {
+namespace {
+
+MltCheckpoint someCheckpoint() {
+    MltCheckpoint c;
+    c.stats.iterations = 7;
+    c.stats.proposals = 700;
+    c.stats.accepted = 321;
+    c.stats.rays = 12345;
+    c.stats.largeSteps = 70;
+    c.stats.bootstrapSamples = 4096;
+    c.stats.traceSeconds = 1.5;
+    c.b.sum = 3.25;
+    c.b.count = 4166;
+    c.b.b0 = 0.00078;
+    c.pixelWeight = {0.5f, 1.0f, 0.25f, 0.75f};
+    c.fine = {1, 2, 3, 4, 5, 6};
+    c.coarse = {7, 8};
+    c.pos = {Vec2f(0.5f, 1.5f), Vec2f(2.5f, 3.5f)};
+    c.value = {Spectrum(1, 2, 3), Spectrum(4, 5, 6)};
+    c.importance = {0.125f, 2.0f};
+    c.usedDims = {11, 18};
+    c.image.assign(kMltValuesPerPixel * 4, 0.0);
+    for (size_t i = 0; i < c.image.size(); ++i) c.image[i] = 0.1 * double(i);
+    return c;
+}
+
+MltCheckpointSizes sizesOf(const MltCheckpoint& c) {
+    MltCheckpointSizes s;
+    s.pixelWeights = c.pixelWeight.size();
+    s.fine = c.fine.size();
+    s.coarse = c.coarse.size();
+    s.values = c.values.size();
+    s.chains = c.pos.size();
+    s.image = c.image.size();
+    return s;
+}
+
+const MltCheckpointKeys kKeys = {{"width", 2}, {"height", 2}, {"chains", 2}};
+
+std::string written(const MltCheckpoint& c, const MltCheckpointKeys& keys = kKeys) {
+    std::stringstream out;
+    writeMltCheckpoint(out, keys, c);
+    return out.str();
+}
+
+std::string readError(const std::string& bytes, const MltCheckpointKeys& keys,
+                      const MltCheckpointSizes& sizes) {
+    std::stringstream in(bytes);
+    try {
+        readMltCheckpoint(in, keys, sizes, MltStats());
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(MltCheckpointFile, ReadsBackWhatWasWritten) {
+    const MltCheckpoint c = someCheckpoint();
+    std::stringstream in(written(c));
+    MltStats current;
+    current.bytesPerChain = 99;  // not in the file: kept from the renderer
+    const MltCheckpoint r = readMltCheckpoint(in, kKeys, sizesOf(c), current);
+    EXPECT_EQ(r.stats.iterations, 7u);
+    EXPECT_EQ(r.stats.proposals, 700u);
+    EXPECT_EQ(r.stats.accepted, 321u);
+    EXPECT_EQ(r.stats.rays, 12345u);
+    EXPECT_EQ(r.stats.largeSteps, 70u);
+    EXPECT_EQ(r.stats.bootstrapSamples, 4096u);
+    EXPECT_EQ(r.stats.traceSeconds, 1.5);
+    EXPECT_EQ(r.stats.bytesPerChain, 99u);
+    EXPECT_EQ(r.b.sum, c.b.sum);
+    EXPECT_EQ(r.b.count, c.b.count);
+    EXPECT_EQ(r.b.b0, c.b.b0);
+    EXPECT_EQ(r.stats.b, c.b.b());
+    EXPECT_EQ(r.pixelWeight, c.pixelWeight);
+    EXPECT_EQ(r.fine, c.fine);
+    EXPECT_EQ(r.coarse, c.coarse);
+    EXPECT_TRUE(r.values.empty());
+    ASSERT_EQ(r.pos.size(), 2u);
+    EXPECT_EQ(r.pos[1].x, 2.5f);
+    EXPECT_EQ(r.value[1].g, 5.0f);
+    EXPECT_EQ(r.importance, c.importance);
+    EXPECT_EQ(r.usedDims, c.usedDims);
+    EXPECT_EQ(r.image, c.image);
+}
+
+TEST(MltCheckpointFile, RefusesOtherSettingsSizesAndDamageByName) {
+    const MltCheckpoint c = someCheckpoint();
+    const std::string bytes = written(c);
+    MltCheckpointKeys other = kKeys;
+    other[2].second = 3;
+    const std::string chains = readError(bytes, other, sizesOf(c));
+    EXPECT_NE(chains.find("rendered with chains 2, this render has 3"), std::string::npos)
+        << chains;
+    MltCheckpointSizes sizes = sizesOf(c);
+    sizes.pixelWeights = 0;  // a luminance-target render
+    EXPECT_NE(readError(bytes, kKeys, sizes).find("pixel weights holds 4 values, expected 0"),
+              std::string::npos);
+    std::string damaged = bytes;
+    damaged[damaged.size() - 12] ^= 0x10;
+    EXPECT_NE(readError(damaged, kKeys, sizesOf(c)).find("checksum"), std::string::npos);
+    EXPECT_NE(readError(bytes.substr(0, bytes.size() - 3), kKeys, sizesOf(c)).find("truncated"),
+              std::string::npos);
+    EXPECT_NE(readError("CAMLTCK0 and more bytes", kKeys, sizesOf(c)).find("bad magic"),
+              std::string::npos);
+    EXPECT_EQ(readError(bytes, kKeys, sizesOf(c)), "");
+}
+
+// The GPU keeps slot s of chain c at s * chains + c (cells of 3 bytes for the fine store); the
+// file holds c * slots + s.
+TEST(MltCheckpointFile, TransposeCellsMovesCellsAndRoundTrips) {
+    const size_t slots = 2, chains = 3;
+    std::vector<uint8_t> dimMajor;  // cell (s, c) = bytes {10s+c, 100+10s+c, 200+10s+c}
+    for (size_t s = 0; s < slots; ++s)
+        for (size_t c = 0; c < chains; ++c)
+            for (int k = 0; k < 3; ++k) dimMajor.push_back(uint8_t(100 * k + 10 * s + c));
+    const std::vector<uint8_t> chainMajor = mltTransposeCells(dimMajor, slots, chains, 3);
+    for (size_t c = 0; c < chains; ++c)
+        for (size_t s = 0; s < slots; ++s)
+            for (size_t k = 0; k < 3; ++k)
+                EXPECT_EQ(chainMajor[(c * slots + s) * 3 + k], uint8_t(100 * k + 10 * s + c))
+                    << c << " " << s;
+    EXPECT_EQ(mltTransposeCells(chainMajor, chains, slots, 3), dimMajor);
+    // No slots: the one-element placeholder a driver allocates stays as it is.
+    EXPECT_EQ(mltTransposeCells(std::vector<uint16_t>{42}, 0, chains, 1),
+              std::vector<uint16_t>{42});
+}
+
+}  // namespace
+}  // namespace caustica

@@ -77,6 +77,18 @@ void writeMltCheckpoint(std::ostream& out, const MltCheckpointKeys& keys, const 
     w.u64(w.hash());
 }
 
+MltCheckpointSizes mltCheckpointSizes(const MltSettings& settings, uint32_t pixels, const MltChainBuffers& buffers,
+                                      size_t fine, size_t coarse, size_t values) {
+    MltCheckpointSizes sizes;
+    sizes.pixelWeights = settings.target == MltTarget::Relative ? pixels : 0;
+    sizes.fine = fine;
+    sizes.coarse = coarse;
+    sizes.values = values;
+    sizes.chains = settings.chains;
+    sizes.image = buffers.image.size();
+    return sizes;
+}
+
 MltCheckpoint readMltCheckpoint(std::istream& in, const MltCheckpointKeys& keys, const MltCheckpointSizes& sizes,
                                 const MltStats& current) {
     BinaryReader r(in, "MLT checkpoint");

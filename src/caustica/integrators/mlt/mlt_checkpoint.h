@@ -48,6 +48,10 @@ struct MltCheckpoint {
 struct MltCheckpointSizes {
     size_t pixelWeights = 0, fine = 0, coarse = 0, values = 0, chains = 0, image = 0;
 };
+/// The sizes for a renderer with these settings, pixels and buffers, whose chain store has
+/// `fine`, `coarse` and `values` elements (0 for arrays its store does not have).
+MltCheckpointSizes mltCheckpointSizes(const MltSettings& settings, uint32_t pixels, const MltChainBuffers& buffers,
+                                      size_t fine, size_t coarse, size_t values);
 
 /// The driver-independent part of a checkpoint: `stats`, `b` and the chains' buffers, downloaded.
 /// The driver adds its pixel weights and chain store.

@@ -248,13 +248,8 @@ public:
     }
 
     void load(std::istream& in) override {
-        MltCheckpointSizes sizes;
-        sizes.pixelWeights = settings.target == MltTarget::Relative ? pixels_ : 0;
-        sizes.fine = fine_.size();
-        sizes.coarse = coarse_.size();
-        sizes.values = values_.size();
-        sizes.chains = settings.chains;
-        sizes.image = buf_.image.size();
+        const MltCheckpointSizes sizes =
+            mltCheckpointSizes(settings, pixels_, buf_, fine_.size(), coarse_.size(), values_.size());
         const MltCheckpoint c = readMltCheckpoint(in, checkpointKeys(), sizes, stats);  // throws before any change
         restoreMltCheckpoint(c, stats, b_, buf_);
         fine_.copyFromHost(c.fine);

@@ -40,6 +40,7 @@ SCENES = os.path.normpath(os.path.join(HERE, '..', 'scenes'))
 CONFIG = {
     'cornell-box': dict(spp=16384, batches=16, res=64, preview=(256, 256)),
     'cornell-water': dict(spp=16384, batches=16, res=64, preview=(240, 512)),
+    'door-gap': dict(spp=32768, batches=32, res=64, preview=(256, 1024)),
 }
 
 

@@ -1,5 +1,5 @@
-// Metropolis light transport converges to the path tracer's image: MLT renders of cornell-box and
-// cornell-water (64x64) against the Mitsuba 3 references the path tracer is tested against, in
+// Metropolis light transport converges to the path tracer's image: MLT renders of cornell-box,
+// cornell-water and door-gap (64x64) against the Mitsuba 3 references the path tracer is tested against, in
 // every mode (compact and float state, k = 1 and k = 2 proposals, atomic and sort splats, Morton
 // sorting), and with a wide reconstruction filter against our own path tracer.
 //
@@ -10,8 +10,8 @@
 // R - 1 degrees of freedom has E[t^2] = (R - 1) / (R - 3); the bound is three times that, as the
 // reference's variance of caustic pixels, estimated from 16 batches, runs low) and the z-score of
 // the image mean, which carries the power: a brightness error of 8% (cornell-box) or 15%
-// (cornell-water, whose image mean is limited by the noise of b: its luminance is heavy-tailed)
-// must be caught (the test can fail), checked on one configuration per scene.
+// (cornell-water and door-gap, whose image means are limited by the noise of b: their luminance is
+// heavy-tailed) must be caught (the test can fail), checked on one configuration per scene.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -64,8 +64,12 @@ struct SmallCornellBox {
 
 const MltCase kBox{"scenes/cornell-box/scene.xml", "scenes/cornell-box/reference/cornell-box-64", 96, 0.08};
 const MltCase kWater{"scenes/cornell-water/scene.xml", "scenes/cornell-water/reference/cornell-water-64", 96, 0.15};
+const MltCase kDoor{"scenes/door-gap/scene.xml", "scenes/door-gap/reference/door-gap-64", 96, 0.15};
 
 TEST(MltConvergence, CornellBoxCompactAtomic) { checkAgainstReference(kBox, smallMltSettings(), true); }
+
+// All of the front room's light comes through a gap 0.05 wide: the case MLT is for.
+TEST(MltConvergence, DoorGap) { checkAgainstReference(kDoor, smallMltSettings(), true); }
 
 TEST(MltConvergence, CornellBoxFloatSortTwoProposalsMortonSorted) {
     MltSettings s = smallMltSettings();

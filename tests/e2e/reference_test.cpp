@@ -47,5 +47,10 @@ TEST(MitsubaReference, CornellWater) {
     checkAgainstReference({"scenes/cornell-water/scene.xml", "scenes/cornell-water/reference/cornell-water-64", 16, 64});
 }
 
+TEST(MitsubaReference, DoorGap) {
+    // Light only through a narrow gap: the path tracer's noisiest bundled scene.
+    checkAgainstReference({"scenes/door-gap/scene.xml", "scenes/door-gap/reference/door-gap-64", 16, 64});
+}
+
 }  // namespace
 }  // namespace caustica::test

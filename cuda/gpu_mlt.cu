@@ -125,9 +125,12 @@ public:
         stats.rays += reduceSum(gpu_, rays.constSpan());
 
         // The plan (pixel weights, b, starts) is made on the host, as on the CPU.
+        // The pixels matter to the relative target only.
         std::vector<float> hostImportance = importance.toHost();
-        const MltBootstrapPlan plan = planMltBootstrap(hostImportance, pixelOf.toHost(), settings, params_.width,
-                                                       params_.height, params_.seed);
+        const std::vector<uint32_t> hostPixel =
+            settings.target == MltTarget::Relative ? pixelOf.toHost() : std::vector<uint32_t>{};
+        const MltBootstrapPlan plan =
+            planMltBootstrap(hostImportance, hostPixel, settings, params_.width, params_.height, params_.seed);
         if (!plan.pixelWeight.empty()) {
             pixelWeight_ = Buffer<float>(gpu_, plan.pixelWeight);
             params_.pixelWeight = pixelWeight_.data();  // device memory: the kernels read it

@@ -3,6 +3,7 @@
 // chain stores, and the memory figures.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
@@ -71,11 +72,12 @@ TEST(MltState, FixedPointValuesMapIntoTheUnitInterval) {
 template <class Store>
 void expectSymmetricSmallSteps(uint32_t dim, typename Store::Raw start) {
     MltMutation m;
+    const KelemenStep step(m);
     std::map<long, int> counts;
     constexpr int kDraws = 200000;
     const double unit = std::is_same_v<Store, CompactChainStore> ? double(1u << CompactChainStore::bitsOf(dim)) : 1e6;
     for (int i = 0; i < kDraws; ++i) {
-        const auto v = Store::small(start, proposalBits(0x1234, uint32_t(i)), dim, m);
+        const auto v = Store::small(start, proposalBits(0x1234, uint32_t(i)), dim, step);
         double delta = (double(v) - double(start)) * (std::is_same_v<Store, CompactChainStore> ? 1.0 : unit);
         const double period = std::is_same_v<Store, CompactChainStore> ? unit : unit;
         if (delta > period / 2) delta -= period;
@@ -99,11 +101,11 @@ TEST(MltState, SmallStepsAreSymmetricAndSizedByKelemensRange) {
 TEST(MltState, SmallStepDistributionIsExactlyMirrorSymmetricOnTheGrid) {
     // The rounded offset has the same distribution for +n and -n: compare the histogram of
     // |offset| for the two signs bucket by bucket (chi-square-like bound on the difference).
-    MltMutation m;
+    const KelemenStep step{MltMutation{}};
     std::map<long, long> pos, neg;
     constexpr int kDraws = 400000;
     for (int i = 0; i < kDraws; ++i) {
-        const uint32_t v = CompactChainStore::small(1u << 15, proposalBits(77, uint32_t(i)), kMltCameraDims, m);
+        const uint32_t v = CompactChainStore::small(1u << 15, proposalBits(77, uint32_t(i)), kMltCameraDims, step);
         const long delta = long(v) - long(1u << 15);
         const long bucket = std::labs(delta) / 64;
         (delta >= 0 ? pos : neg)[bucket]++;
@@ -112,6 +114,36 @@ TEST(MltState, SmallStepDistributionIsExactlyMirrorSymmetricOnTheGrid) {
         const double a = double(n), b = double(neg[bucket]);
         EXPECT_LE(std::fabs(a - b), 5 * std::sqrt(a + b) + 1) << "bucket " << bucket;
     }
+}
+
+TEST(MltState, Exp2ApproxMatchesLibm) {
+    // Over the whole range the small-step sizes use (and beyond, down to the clamp).
+    double worst = 0;
+    for (int i = 0; i <= 1000000; ++i) {
+        const float x = 0.5f - 125.5f * float(i) / 1e6f;
+        worst = std::max(worst, std::fabs(double(exp2Approx(x)) / std::exp2(double(x)) - 1));
+    }
+    EXPECT_LT(worst, 5e-7);
+    EXPECT_FLOAT_EQ(exp2Approx(-1000.0f), std::exp2(-125.0f));  // clamped, never denormal or zero
+}
+
+// The step sizes are log-uniform in [s1, s2]: log2(|offset|) is uniform over [log2 s1, log2 s2].
+TEST(MltState, SmallStepSizesAreLogUniform) {
+    const MltMutation m{1.0f / 4096.0f, 1.0f / 16.0f};
+    const KelemenStep step(m);
+    constexpr int kBins = 16, kDraws = 160000;
+    std::vector<int> bins(kBins, 0);
+    for (int i = 0; i < kDraws; ++i) {
+        const double size = step.magnitude(proposalBits(31, uint32_t(i)));
+        ASSERT_GE(size, m.s1 * (1 - 1e-6));
+        ASSERT_LE(size, m.s2 * (1 + 1e-6));
+        const double t = std::log2(size / m.s1) / std::log2(m.s2 / m.s1);
+        bins[std::min(kBins - 1, int(t * kBins))]++;
+    }
+    double chi2 = 0;
+    const double expected = double(kDraws) / kBins;
+    for (int b : bins) chi2 += (b - expected) * (b - expected) / expected;
+    EXPECT_LT(chi2, 40.0);  // 15 degrees of freedom: p < 1e-3
 }
 
 TEST(MltState, LargeStepsAreUniformOnTheGrid) {

@@ -23,7 +23,7 @@ struct MltBootstrapPlan {
 };
 
 /// `importance` holds the luminance of each of the M bootstrap samples, `pixel` the pixel each
-/// fell in; on return `importance` holds I under the settings' target, 0 for samples that only
+/// fell in (read under the relative target only; may be empty under the luminance target); on return `importance` holds I under the settings' target, 0 for samples that only
 /// estimated B (so no chain starts there). Throws caustica::Error if no sample carries light.
 MltBootstrapPlan planMltBootstrap(std::vector<float>& importance, const std::vector<uint32_t>& pixel,
                                   const MltSettings& settings, int width, int height, uint64_t seed);

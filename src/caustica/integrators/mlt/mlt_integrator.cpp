@@ -386,7 +386,6 @@ Image MltRenderer::develop() const { return impl_->develop(); }
 const MltStats& MltRenderer::stats() const { return impl_->stats; }
 const MltSettings& MltRenderer::settings() const { return impl_->settings; }
 bool MltRenderer::started() const { return impl_->started; }
-bool MltRenderer::resumable() const { return true; }
 void MltRenderer::save(std::ostream& out) const { impl_->save(out); }
 void MltRenderer::load(std::istream& in) { impl_->load(in); }
 double MltRenderer::mutationsPerPixel() const {

@@ -97,8 +97,7 @@ public:
     /// Resumable checkpoints: save() writes the whole state (chains, splat sums, b, counters);
     /// load() restores it into a renderer built with the same scene and settings, in place of
     /// bootstrap(), and throws caustica::Error naming what differs (a damaged or foreign file
-    /// leaves the renderer untouched). Every driver (CPU and GPU) has them: resumable() is true.
-    bool resumable() const;
+    /// leaves the renderer untouched). Every driver (CPU and GPU) has them.
     void save(std::ostream& out) const;
     void load(std::istream& in);
     /// Proposals per pixel so far (the analogue of samples per pixel).

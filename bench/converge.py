@@ -54,7 +54,9 @@ def main():
     ap.add_argument('--ref', required=True, help='reference image (.exr); REF.var.exr is used if present')
     ap.add_argument('--config', action='append', required=True, help='NAME or NAME:EXTRA-ARGS (repeatable)')
     ap.add_argument('--times', default='2,4,8,16', help='time budgets in seconds, comma separated')
-    ap.add_argument('--repeat', type=int, default=1, help='independent renders per budget (seeds 1..N)')
+    ap.add_argument('--repeat', type=int, default=1, help='independent renders per budget (seeds S..S+N-1)')
+    ap.add_argument('--first-seed', type=int, default=1,
+                    help='S, the seed of the first repeat (to add repeats to an earlier run)')
     ap.add_argument('--res', help='WIDTHxHEIGHT (default: the reference size must match the scene)')
     ap.add_argument('--threads', type=int, help='render threads')
     ap.add_argument('--caustica', default=os.path.join(ROOT, 'build', 'caustica'))
@@ -76,7 +78,7 @@ def main():
                     img = os.path.join(tmp, 'img.exr')
                     stats = os.path.join(tmp, 'stats.json')
                     cmd = [a.caustica, 'render', a.scene, '--time', str(t), '-q', '-o', img,
-                           '--stats-json', stats, '--seed', str(rep + 1), '--checkpoint-every', '0']
+                           '--stats-json', stats, '--seed', str(a.first_seed + rep), '--checkpoint-every', '0']
                     if a.res:
                         cmd += ['--res', a.res]
                     if a.threads:
@@ -86,7 +88,7 @@ def main():
                         st = json.load(f)
                     cmp = [a.caustica, 'compare', img, a.ref, '--json'] + (['--ref-var', var] if var else [])
                     m = json.loads(run(cmp))
-                    row = {'config': name, 'budget_s': t, 'repeat': rep, 'seconds': st['seconds'],
+                    row = {'config': name, 'budget_s': t, 'repeat': a.first_seed - 1 + rep, 'seconds': st['seconds'],
                            'samples': st['samples'], 'rays': st['rays'], 'relmse': m['relmse'],
                            'relmse_ref_noise_removed': m.get('relmse_ref_noise_removed', ''),
                            'mlt_b': st.get('mlt_b', ''), 'mlt_iterations': st.get('mlt_iterations', ''),

@@ -129,6 +129,23 @@ inline Chi2Result chi2Test(const std::vector<double>& observed, const std::vecto
     return r;
 }
 
+/// χ² test that `draw(0) ... draw(draws - 1)` are uniform on [0, 1), over `bins` equal bins. A value
+/// outside [0, 1) fails the test by name.
+inline Chi2Result chi2UniformOnUnitInterval(int bins, int draws, const std::function<double(int)>& draw) {
+    std::vector<double> observed(size_t(bins), 0.0), expected(size_t(bins), double(draws) / bins);
+    for (int i = 0; i < draws; ++i) {
+        const double u = draw(i);
+        if (!(u >= 0 && u < 1)) {
+            Chi2Result r;
+            r.pValue = 0;
+            r.error = "draw " + std::to_string(i) + " = " + std::to_string(u) + " is outside [0, 1)";
+            return r;
+        }
+        observed[std::min(size_t(bins) - 1, size_t(u * bins))] += 1;
+    }
+    return chi2Test(observed, expected);
+}
+
 /// Two-sided p-value of k successes in n Bernoulli(p) trials (normal approximation, valid for
 /// n p (1 - p) >> 1).
 inline double binomialPValue(double k, double n, double p) {

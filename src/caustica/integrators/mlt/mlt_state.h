@@ -21,7 +21,6 @@
 // Coordinates past the stored bounces are likewise drawn anew at each proposal.
 #pragma once
 
-#include <bit>
 #include <cmath>
 #include <cstdint>
 
@@ -47,28 +46,6 @@ struct MltMutation {
     Float s1 = 1.0f / 1024.0f;
     Float s2 = 1.0f / 64.0f;
 };
-
-/// 2^x for x <= 0.5 (at least 2^-125), to about 2e-7 relative error, with no libm call: the small-step size
-/// is computed for every perturbed coordinate, and expf/logf/floor were a sixth of MLT's time on
-/// the CPU. Integer part into the exponent; 2^f, |f| <= 1/2, by a degree-6 polynomial.
-CA_HD_INLINE float exp2Approx(float x) {
-    x = x < -125.0f ? -125.0f : x;
-    const int i = int(x - 0.5f);  // truncation: ceil(x - 1/2) for x < 1/2, so f lies in (-1/2, 1/2]
-    const float f = x - float(i);
-    float p = 1.535336188e-4f;  // Horner, highest power first
-    p = p * f + 0.001339887440f;
-    p = p * f + 0.009618437358f;
-    p = p * f + 0.05550332471f;
-    p = p * f + 0.2402264791f;
-    p = p * f + 0.6931472028f;
-    p = p * f + 1.0f;
-#ifdef __CUDA_ARCH__
-    const float scale = __int_as_float((i + 127) << 23);
-#else
-    const float scale = std::bit_cast<float>(uint32_t(i + 127) << 23);
-#endif
-    return p * scale;
-}
 
 /// Kelemen's step sizes ready to draw from: log2(s2 / s1) computed once per proposal.
 struct KelemenStep {
@@ -174,7 +151,7 @@ public:
     CA_HD MltProposalSampler(const Store* store, uint32_t chain, uint32_t currentDims, uint64_t key,
                              bool largeStep, const MltMutation& mutation)
         : store_(store), chain_(chain), current_(store ? min(currentDims, store->dims) : 0), key_(key),
-          large_(largeStep), step_(mutation) {}
+          large_(largeStep), step_(largeStep ? KelemenStep{} : KelemenStep(mutation)) {}
 
     /// Coordinate `dim` of this proposal in the store's representation.
     CA_HD typename Store::Raw raw(uint32_t dim) const {

@@ -197,7 +197,8 @@ std::function<int()> addRenderCommand(CLI::App& app) {
             request.cancel = &gCancel;
             request.checkpoint = checkpoint;
             request.resume = opt->resume;
-            const MltSettings mltSettings = mltSettingsFrom(scene.integrator, opt->mlt);
+            const MltSettings mltSettings =
+                mltSettingsFrom(scene.integrator, opt->mlt, onGpu, uint64_t(scene.film.width) * uint64_t(scene.film.height));
 #ifdef CAUSTICA_WITH_CUDA
             if (onGpu) {  // the GPU driver (cuda/gpu_mlt.h), on the own BVH
                 request.device = "cuda, " + cudaDeviceDescription();

@@ -14,7 +14,8 @@
 namespace caustica::cli {
 
 void addMltOptions(CLI::App& cmd, MltCliOptions& o) {
-    cmd.add_option("--mlt-chains", o.chains, "MLT: Markov chains stepped in lock step (default 1024)")
+    cmd.add_option("--mlt-chains", o.chains, "MLT: Markov chains stepped in lock step (default 1024 on the CPU; on a GPU half a chain "
+                   "per pixel, 4096 to 524288)")
         ->check(CLI::Range(1u, 1u << 26));
     cmd.add_option("--mlt-bootstrap", o.bootstrap,
                    "MLT: ordinary Monte Carlo samples that estimate b and select the chains' starts "
@@ -43,8 +44,9 @@ void addMltOptions(CLI::App& cmd, MltCliOptions& o) {
         ->check(CLI::IsMember({"luminance", "relative"}));
 }
 
-MltSettings mltSettingsFrom(const IntegratorDesc& desc, const MltCliOptions& o) {
+MltSettings mltSettingsFrom(const IntegratorDesc& desc, const MltCliOptions& o, bool gpu, uint64_t pixels) {
     MltSettings s;
+    s.chains = mltDefaultChains(gpu, pixels);
     if (desc.mltChains > 0) s.chains = desc.mltChains;
     if (o.chains > 0) s.chains = o.chains;
     s.bootstrapSamples = o.bootstrap > 0 ? o.bootstrap : desc.mltBootstrapSamples;

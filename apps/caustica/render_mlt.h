@@ -29,7 +29,9 @@ struct MltCliOptions {
 };
 
 void addMltOptions(CLI::App& cmd, MltCliOptions& options);
-MltSettings mltSettingsFrom(const IntegratorDesc& desc, const MltCliOptions& options);
+/// The MLT settings of a render: the command line's over the scene's over the defaults (the chain
+/// count's depends on the device and the image size: mltDefaultChains).
+MltSettings mltSettingsFrom(const IntegratorDesc& desc, const MltCliOptions& options, bool gpu, uint64_t pixels);
 
 struct MltRunRequest {
     std::vector<std::string> outputs;

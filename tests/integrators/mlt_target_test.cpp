@@ -72,6 +72,15 @@ TEST(MltBootstrap, DefaultSizeIs64PerPixelCappedAndAtLeast4PerChain) {
     EXPECT_EQ(mltDefaultBootstrapSamples(1u << 20, 16 * 16), uint64_t(4) << 20);
 }
 
+TEST(MltChains, DefaultIsFixedOnTheCpuAndHalfAChainPerPixelOnAGpu) {
+    EXPECT_EQ(mltDefaultChains(false, 64 * 64), kMltDefaultChains);
+    EXPECT_EQ(mltDefaultChains(false, 4096 * 4096), kMltDefaultChains);
+    EXPECT_EQ(mltDefaultChains(true, 640 * 480), 640u * 480 / 2);
+    EXPECT_EQ(mltDefaultChains(true, 1024 * 1024), 1u << 19);  // the founding paper's count
+    EXPECT_EQ(mltDefaultChains(true, 4096 * 4096), 1u << 19);
+    EXPECT_EQ(mltDefaultChains(true, 64 * 64), 4096u);
+}
+
 TEST(MltTarget, ParsesItsNames) {
     EXPECT_EQ(parseMltTarget("luminance"), MltTarget::Luminance);
     EXPECT_EQ(parseMltTarget("relative"), MltTarget::Relative);

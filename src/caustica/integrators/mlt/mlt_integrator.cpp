@@ -41,6 +41,11 @@ uint32_t mltStoredBounces(const PathSettings& settings) {
     return std::min<uint32_t>(uint32_t(std::max(settings.maxDepth - 1, 0)), kMltMaxStoredBounces);
 }
 
+uint32_t mltDefaultChains(bool gpu, uint64_t pixels) {
+    if (!gpu) return kMltDefaultChains;
+    return uint32_t(std::clamp<uint64_t>(pixels / 2, 4096, uint64_t(1) << 19));
+}
+
 uint64_t mltDefaultBootstrapSamples(uint32_t chains, uint64_t pixels) {
     return std::max<uint64_t>(uint64_t(4) * chains, std::min<uint64_t>(64 * pixels, uint64_t(1) << 24));
 }

@@ -30,10 +30,16 @@ MltStateKind parseMltStateKind(const std::string& name);  // "compact" | "float"
 MltSplatKind parseMltSplatKind(const std::string& name);  // "atomic" | "sort"
 MltStart parseMltStart(const std::string& name);          // "bootstrap" | "uniform"
 
-/// Default chain count. On a CPU few long chains beat many short ones at equal time: a chain's
+/// Default chain count on a CPU. There few long chains beat many short ones at equal time: a chain's
 /// error is dominated by its first steps and by chains started at the same bootstrap sample
-/// (docs/PERFORMANCE.md); a GPU wants more to fill its threads.
+/// (docs/PERFORMANCE.md).
 inline constexpr uint32_t kMltDefaultChains = 1024;
+/// Default chain count for `pixels` pixels: kMltDefaultChains on a CPU; on a GPU half a chain per
+/// pixel, as the founding paper ran (524,288 chains at 1024x1024; Frolov & Galaktionov 2017,
+/// fig. 5), within [4096, 524288]. A GPU needs enough chains to fill its threads, and the paper
+/// found 2-4x fewer than that costs little tracing speed (its fig. 3), so small images keep the
+/// chains long instead.
+uint32_t mltDefaultChains(bool gpu, uint64_t pixels);
 /// Default bootstrap size M: 64 per pixel, at most 2^24, at least 4 per chain. Fewer start the
 /// chains at the same bright samples (a sample of importance I starts about chains x I / (M b)
 /// chains, which then move together) and blur the relative target's brightness map: on

@@ -108,6 +108,25 @@ TEST(TextureLoader, CheckerboardRawConstantAndReferences) {
     EXPECT_EQ(s.textures[2].value.r, 0.4f);  // default color0
 }
 
+// Mitsuba's bounds on colour values: an <rgb> reflectance lies in [0, 1] (refused otherwise, see
+// the bad-scene corpus), but emission, the conductor's eta and k, and a rawconstant's <vector> do not.
+TEST(TextureLoader, ColoursBeyondOneWhereMitsubaAllowsThem) {
+    TempDir dir;
+    const Scene s = loadXml(dir, sceneXml(R"(
+        <shape type="sphere"><bsdf type="diffuse">
+            <texture type="rawconstant" name="reflectance"><vector name="value" x="0.2" y="0.3" z="1.5"/></texture>
+        </bsdf></shape>
+        <shape type="sphere"><bsdf type="conductor">
+            <rgb name="eta" value="0.2, 0.9, 1.4"/><rgb name="k" value="3.9, 2.4, 1.6"/>
+        </bsdf></shape>
+        <shape type="sphere"><emitter type="area"><rgb name="radiance" value="10, 5, 2"/></emitter></shape>)"));
+    const Spectrum constant = s.bsdfs[s.shapes[0].bsdf].reflectance;
+    EXPECT_EQ(constant.r, 0.2f);
+    EXPECT_EQ(constant.b, 1.5f);
+    EXPECT_EQ(s.bsdfs[s.shapes[1].bsdf].k.r, 3.9f);
+    EXPECT_EQ(s.lights[0].radiance.r, 10.0f);
+}
+
 TEST(TextureLoader, RoughnessTextures) {
     TempDir dir;
     writeTexture(dir);

@@ -10,7 +10,7 @@
 // |              | fp16), accel (true; ignored)                                                |
 // | checkerboard | color0 (0.4), color1 (0.2) (values or textures, evaluated at the unchanged  |
 // |              | uv as Mitsuba), to_uv (identity)                                            |
-// | rawconstant  | value (1): a float or an <rgb>                                              |
+// | rawconstant  | value (1): a <float>, or a <vector> (three channels; not for float params)  |
 // | bumpmap      | one nested texture (the height field; a bitmap), one nested bsdf, scale (1),|
 // |              | flip_invalid_normals (true), use_shadowing_function (true)                  |
 // | normalmap    | a nested texture named "normalmap" (tangent-space normals, 2 rgb - 1; use  |
@@ -104,13 +104,26 @@ Texture bitmap(BuildContext& ctx, Params& p) {
     return t;
 }
 
+/// A colour parameter given as a value. Mitsuba turns an <rgb> outside an emitter into a bounded
+/// sRGB reflectance and refuses components above 1, except for the index-of-refraction parameters
+/// (its parser's is_unbounded_spectrum); a <spectrum> is clamped instead (spectrum_to_rgb). Negative
+/// values are refused by getSpectrum.
+Spectrum colourValue(const Params& p, const std::string& name, Spectrum def) {
+    const Spectrum s = p.getSpectrum(name, def);
+    const bool unbounded = name == "eta" || name == "k" || name == "int_ior" || name == "ext_ior";
+    const Property* prop = p.find(name);
+    if (prop && prop->type == PropertyType::Rgb && !unbounded && s.maxValue() > 1)
+        p.fail(*prop, "an <rgb> reflectance must lie in [0, 1] (Mitsuba refuses it too)");
+    return s;
+}
+
 /// A checkerboard colour: a value, or a nested/referenced texture (`child`; a constant one is
 /// kept as its value). Returns Mitsuba's mean() of the colour.
 Float checkerColour(BuildContext& ctx, Params& p, const std::string& name, Spectrum def,
                     Spectrum& value, uint32_t& child) {
     const int object = findTextureChild(p, name);
     if (object < 0) {
-        value = p.getSpectrum(name, def);
+        value = colourValue(p, name, def);
         return value.average();
     }
     if (const Property* prop = p.find(name))
@@ -140,12 +153,30 @@ Texture checkerboard(BuildContext& ctx, Params& p) {
     return t;
 }
 
+/// Mitsuba's rawconstant: a <float> (one channel) or a <vector> (three); it refuses an <rgb>.
 Texture rawConstant(BuildContext&, Params& p) {
     Texture t;
     t.type = TextureType::Constant;
-    t.value = p.getSpectrum("value", Spectrum(1.0f));
+    const Property* value = p.find("value");
+    if (!value || value->type == PropertyType::Float || value->type == PropertyType::Integer) {
+        t.value = p.getSpectrum("value", Spectrum(1.0f));
+    } else if (value->type == PropertyType::Vector || value->type == PropertyType::Point) {
+        t.value = Spectrum(value->vector.x, value->vector.y, value->vector.z);
+        if (!t.value.isValid()) p.fail(*value, "must be finite and non-negative");
+    } else {
+        p.fail(*value, "must be a <float> or a <vector>, as Mitsuba's rawconstant requires");
+    }
     t.mean = t.value.average();
     return t;
+}
+
+/// A rawconstant given a <vector>: three channels, which a float parameter cannot take.
+bool isThreeChannelConstant(const SceneDescription& desc, int object) {
+    const ObjectEntity& o = desc.objects[size_t(object)];
+    if (o.type != "rawconstant") return false;
+    for (const Property& q : o.properties)
+        if (q.name == "value") return q.type == PropertyType::Vector || q.type == PropertyType::Point;
+    return false;
 }
 
 using TextureFn = Texture (*)(BuildContext&, Params&);
@@ -231,7 +262,7 @@ bool hasParam(const Params& p, const std::string& name) {
 Spectrum readSpectrumParam(BuildContext& ctx, Params& p, const std::string& name, Spectrum def,
                            Bsdf& b, BsdfParam param) {
     const int child = findTextureChild(p, name);
-    if (child < 0) return p.getSpectrum(name, def);
+    if (child < 0) return colourValue(p, name, def);
     uint32_t index = 0;
     const Texture& t = textureFor(ctx, p, name, child, index);
     if (t.type == TextureType::Constant) return t.value;
@@ -245,8 +276,12 @@ Float readFloatParam(BuildContext& ctx, Params& p, const std::string& name, Floa
     if (child < 0) return p.getFloat(name, def);
     uint32_t index = 0;
     const Texture& t = textureFor(ctx, p, name, child, index);
-    if (t.type == TextureType::Constant)
-        return t.value.r == t.value.g && t.value.g == t.value.b ? t.value.r : t.value.luminance();
+    if (t.type == TextureType::Constant) {
+        if (isThreeChannelConstant(ctx.desc, child))
+            p.failAtChild(child, "a rawconstant with a <vector> value has three channels and cannot give the "
+                                 "float parameter '" + name + "' (Mitsuba refuses it too)");
+        return t.value.r;
+    }
     addTexture(p, b, param, index);
     return t.mean;
 }

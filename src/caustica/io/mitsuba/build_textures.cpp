@@ -113,7 +113,7 @@ Spectrum colourValue(const Params& p, const std::string& name, Spectrum def) {
     const bool unbounded = name == "eta" || name == "k" || name == "int_ior" || name == "ext_ior";
     const Property* prop = p.find(name);
     if (prop && prop->type == PropertyType::Rgb && !unbounded && s.maxValue() > 1)
-        p.fail(*prop, "an <rgb> reflectance must lie in [0, 1] (Mitsuba refuses it too)");
+        p.fail(*prop, "must lie in [0, 1]: it is an <rgb> reflectance (Mitsuba refuses it too)");
     return s;
 }
 

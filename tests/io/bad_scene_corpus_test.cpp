@@ -94,6 +94,8 @@ const BadCase kCases[] = {
      R"(parameter 'reflectance' must lie in [0, 1]: it is an <rgb> reflectance (Mitsuba refuses it too))"},
     {"checkerboard_rgb_above_one.xml", "checkerboard_rgb_above_one.xml", 7,
      R"(parameter 'color0' must lie in [0, 1]: it is an <rgb> reflectance)"},
+    {"blendbsdf_rgb_weight_above_one.xml", "blendbsdf_rgb_weight_above_one.xml", 6,
+     R"(parameter 'weight' must lie in [0, 1]: it is an <rgb> reflectance)"},
     {"rawconstant_rgb.xml", "rawconstant_rgb.xml", 7,
      R"(must be a <float> or a <vector>, as Mitsuba's rawconstant requires)"},
     {"rawconstant_vector_for_float.xml", "rawconstant_vector_for_float.xml", 6,

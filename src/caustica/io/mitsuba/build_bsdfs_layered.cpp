@@ -33,7 +33,7 @@ namespace {
 
 /// Mitsuba's weight/opacity: a float, a colour's mean (what Mitsuba 3.9.1's scalar_rgb returns
 /// for a constant <rgb>, checked through its Python bindings) or a texture (evaluated in the
-/// kernels, BsdfParam::Weight), clamped to [0, 1].
+/// kernels, BsdfParam::Weight), clamped to [0, 1]; an <rgb> above 1 is refused, as by Mitsuba.
 Float readUnitWeight(BuildContext& ctx, Params& p, const std::string& name, Float def, Bsdf& b) {
     if (findTextureChild(p, name) >= 0)
         return std::clamp(readFloatParam(ctx, p, name, def, b, BsdfParam::Weight), Float(0),
@@ -41,7 +41,7 @@ Float readUnitWeight(BuildContext& ctx, Params& p, const std::string& name, Floa
     const Property* prop = p.find(name);
     if (!prop) return def;
     if (prop->type == PropertyType::Rgb || prop->type == PropertyType::Spectrum) {
-        const Spectrum s = p.getSpectrum(name, Spectrum(def));
+        const Spectrum s = readColourValue(p, name, Spectrum(def));  // an <rgb> above 1 is refused
         return std::clamp((s.r + s.g + s.b) / 3, Float(0), Float(1));
     }
     return std::clamp(p.getFloat(name), Float(0), Float(1));

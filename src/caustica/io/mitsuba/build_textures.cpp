@@ -104,26 +104,13 @@ Texture bitmap(BuildContext& ctx, Params& p) {
     return t;
 }
 
-/// A colour parameter given as a value. Mitsuba turns an <rgb> outside an emitter into a bounded
-/// sRGB reflectance and refuses components above 1, except for the index-of-refraction parameters
-/// (its parser's is_unbounded_spectrum); a <spectrum> is clamped instead (spectrum_to_rgb). Negative
-/// values are refused by getSpectrum.
-Spectrum colourValue(const Params& p, const std::string& name, Spectrum def) {
-    const Spectrum s = p.getSpectrum(name, def);
-    const bool unbounded = name == "eta" || name == "k" || name == "int_ior" || name == "ext_ior";
-    const Property* prop = p.find(name);
-    if (prop && prop->type == PropertyType::Rgb && !unbounded && s.maxValue() > 1)
-        p.fail(*prop, "must lie in [0, 1]: it is an <rgb> reflectance (Mitsuba refuses it too)");
-    return s;
-}
-
 /// A checkerboard colour: a value, or a nested/referenced texture (`child`; a constant one is
 /// kept as its value). Returns Mitsuba's mean() of the colour.
 Float checkerColour(BuildContext& ctx, Params& p, const std::string& name, Spectrum def,
                     Spectrum& value, uint32_t& child) {
     const int object = findTextureChild(p, name);
     if (object < 0) {
-        value = colourValue(p, name, def);
+        value = readColourValue(p, name, def);
         return value.average();
     }
     if (const Property* prop = p.find(name))
@@ -259,10 +246,19 @@ bool hasParam(const Params& p, const std::string& name) {
     return p.has(name) || findTextureChild(p, name) >= 0;
 }
 
+Spectrum readColourValue(const Params& p, const std::string& name, Spectrum def) {
+    const Spectrum s = p.getSpectrum(name, def);
+    const bool unbounded = name == "eta" || name == "k" || name == "int_ior" || name == "ext_ior";
+    const Property* prop = p.find(name);
+    if (prop && prop->type == PropertyType::Rgb && !unbounded && s.maxValue() > 1)
+        p.fail(*prop, "must lie in [0, 1]: it is an <rgb> reflectance (Mitsuba refuses it too)");
+    return s;
+}
+
 Spectrum readSpectrumParam(BuildContext& ctx, Params& p, const std::string& name, Spectrum def,
                            Bsdf& b, BsdfParam param) {
     const int child = findTextureChild(p, name);
-    if (child < 0) return colourValue(p, name, def);
+    if (child < 0) return readColourValue(p, name, def);
     uint32_t index = 0;
     const Texture& t = textureFor(ctx, p, name, child, index);
     if (t.type == TextureType::Constant) return t.value;

@@ -27,15 +27,17 @@ std::function<int()> addCompareCommand(CLI::App& app) {
         const bool withVar = !opt->referenceVariance.empty();
         const ErrorMetrics m = withVar ? compareImages(a, b, readImage(opt->referenceVariance)) : compareImages(a, b);
         if (opt->json) {
-            std::printf("{\"mse\": %.9g, \"rmse\": %.9g, \"relmse\": %.9g, \"mae\": %.9g, \"pixels\": %zu",
-                        m.mse, m.rmse, m.relMse, m.mae, m.pixels);
+            std::printf("{\"mse\": %.9g, \"rmse\": %.9g, \"relmse\": %.9g, \"mae\": %.9g, \"pixels\": %zu, "
+                        "\"relmse_worst_1pct_share\": %.9g",
+                        m.mse, m.rmse, m.relMse, m.mae, m.pixels, m.relMseWorstShare);
             if (withVar)
                 std::printf(", \"mse_ref_noise_removed\": %.9g, \"relmse_ref_noise_removed\": %.9g",
                             m.mseRefNoiseRemoved, m.relMseRefNoiseRemoved);
             std::printf("}\n");
         } else {
-            std::printf("MSE     %.6g\nRMSE    %.6g\nrelMSE  %.6g\nMAE     %.6g\npixels  %zu\n",
-                        m.mse, m.rmse, m.relMse, m.mae, m.pixels);
+            std::printf("MSE     %.6g\nRMSE    %.6g\nrelMSE  %.6g\nMAE     %.6g\npixels  %zu\n"
+                        "relMSE share of the worst 1%% of pixels  %.3g\n",
+                        m.mse, m.rmse, m.relMse, m.mae, m.pixels, m.relMseWorstShare);
             if (withVar)
                 std::printf("MSE    (reference noise removed) %.6g\nrelMSE (reference noise removed) %.6g\n",
                             m.mseRefNoiseRemoved, m.relMseRefNoiseRemoved);

@@ -97,6 +97,7 @@ TEST_F(Cli, CompareAndInfo) {
     Result c = run("compare " + path("c.exr") + " " + path("c.exr") + " --json -e " + path("err.png"));
     ASSERT_EQ(c.exitCode, 0) << c.output;
     EXPECT_NE(c.output.find("\"mse\": 0"), std::string::npos) << c.output;
+    EXPECT_NE(c.output.find("\"relmse_worst_1pct_share\": 0"), std::string::npos) << c.output;
     EXPECT_TRUE(fs::exists(path("err.png")));
     Result i = run("info " + box);
     ASSERT_EQ(i.exitCode, 0) << i.output;

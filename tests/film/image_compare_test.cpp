@@ -30,6 +30,26 @@ TEST(ImageCompare, HandComputedMetrics) {
     EXPECT_NEAR(m.relMse, rel, 1e-15);
 }
 
+// The share of relMse carried by the worst 1% of pixels (rounded up): one bad pixel among 200 carries
+// nearly all of it; even errors over 250 pixels give the worst 3 their 3 / 250.
+TEST(ImageCompare, WorstPercentShareOfRelMse) {
+    Image ref(20, 10), test(20, 10);
+    for (float& v : ref.rgb) v = 0.5f;
+    test = ref;
+    EXPECT_EQ(compareImages(test, ref).relMseWorstShare, 0.0);  // no error at all
+    test.set(3, 4, Spectrum(5.0f));  // the worst 1% of 200 pixels is 2: this one and a small one
+    for (int x : {7, 8, 9}) test.set(x, 1, Spectrum(0.51f));
+    const ErrorMetrics one = compareImages(test, ref);
+    const double big = 4.5 * 4.5, small = 0.01 * 0.01;  // (a - b)^2 over the same b^2 + 0.01
+    EXPECT_NEAR(one.relMseWorstShare, (big + small) / (big + 3 * small), 1e-6);
+    Image evenRef(25, 10), even(25, 10);
+    for (float& v : evenRef.rgb) v = 1.0f;
+    for (float& v : even.rgb) v = 1.5f;
+    EXPECT_NEAR(compareImages(even, evenRef).relMseWorstShare, 3.0 / 250, 1e-12);
+    even.set(0, 0, Spectrum(std::numeric_limits<float>::quiet_NaN()));
+    EXPECT_TRUE(std::isnan(compareImages(even, evenRef).relMseWorstShare));
+}
+
 TEST(ImageCompare, IdenticalImagesHaveZeroError) {
     const Image a = makeImage(1, 2, {0.5f, 7, 0, 1e3f, 2, 3});
     const ErrorMetrics m = compareImages(a, a);

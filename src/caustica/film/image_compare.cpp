@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,36 @@ void checkSameSize(const Image& test, const Image& reference) {
                     std::to_string(test.height) + " image with a " +
                     std::to_string(reference.width) + " x " + std::to_string(reference.height) +
                     " reference");
+}
+
+/// relMse's term per pixel, averaged over the three channels.
+std::vector<double> relativeErrorPerPixel(const Image& test, const Image& reference) {
+    std::vector<double> err(test.pixelCount());
+    for (size_t i = 0; i < err.size(); ++i) {
+        double e = 0;
+        for (int c = 0; c < 3; ++c) {
+            const double a = test.rgb[3 * i + c], b = reference.rgb[3 * i + c], d = a - b;
+            e += d * d / (b * b + kRelMseEpsilon);
+        }
+        err[i] = e / 3;
+    }
+    return err;
+}
+
+/// The fraction of the summed errors that the largest 1% of them (at least one) make up; 0 when
+/// they are all 0, NaN when one is not finite.
+double worstPercentShare(std::vector<double> err) {
+    double total = 0;
+    for (double e : err) {
+        if (!std::isfinite(e)) return std::nan("");
+        total += e;
+    }
+    if (!(total > 0)) return 0;
+    const size_t k = std::max<size_t>(1, (err.size() + 99) / 100);
+    std::nth_element(err.begin(), err.begin() + std::ptrdiff_t(k - 1), err.end(), std::greater<>());
+    double worst = 0;
+    for (size_t i = 0; i < k; ++i) worst += err[i];
+    return worst / total;
 }
 
 }  // namespace
@@ -41,6 +72,7 @@ ErrorMetrics compareImages(const Image& test, const Image& reference) {
     m.rmse = std::sqrt(m.mse);
     m.relMse = rel / n;
     m.mae = ae / n;
+    m.relMseWorstShare = worstPercentShare(relativeErrorPerPixel(test, reference));
     return m;
 }
 
@@ -62,15 +94,7 @@ ErrorMetrics compareImages(const Image& test, const Image& reference, const Imag
 Image falseColourError(const Image& test, const Image& reference, double scale) {
     checkSameSize(test, reference);
     const size_t n = test.pixelCount();
-    std::vector<double> err(n);
-    for (size_t i = 0; i < n; ++i) {
-        double e = 0;
-        for (int c = 0; c < 3; ++c) {
-            const double a = test.rgb[3 * i + c], b = reference.rgb[3 * i + c], d = a - b;
-            e += d * d / (b * b + kRelMseEpsilon);
-        }
-        err[i] = e / 3;
-    }
+    const std::vector<double> err = relativeErrorPerPixel(test, reference);
     if (!(scale > 0)) {
         // 99th percentile of the finite errors; their maximum if that is 0; else 1.
         std::vector<double> finite;

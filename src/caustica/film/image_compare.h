@@ -12,13 +12,16 @@ namespace caustica {
 ///   mse    = mean (a - b)^2              rmse = sqrt(mse)
 ///   relMse = mean (a - b)^2 / (b^2 + 0.01)   (b: the reference; Rousselle et al. 2011)
 ///   mae    = mean |a - b|
-/// `pixels` is the number of pixels compared.
+/// `pixels` is the number of pixels compared. relMseWorstShare is the fraction of relMse that the
+/// worst 1% of pixels carry (at least one pixel): about 0.01-0.05 for even noise, near 1 when a few
+/// outliers (fireflies, a Metropolis chain's blotch) make up the error.
 /// With the reference's per-pixel variance (the variance of its mean, e.g. REF.var.exr), the
 /// expected share of the reference's own noise is subtracted as well: E[(a - b)^2] = (a - r)^2 +
 /// var(b) for an exact value r, so mseRefNoiseRemoved and relMseRefNoiseRemoved estimate the test
 /// image's error against the exact image (they may be slightly negative when it is tiny).
 struct ErrorMetrics {
     double mse = 0, rmse = 0, relMse = 0, mae = 0;
+    double relMseWorstShare = 0;
     double mseRefNoiseRemoved = 0, relMseRefNoiseRemoved = 0;  // only with a reference variance
     size_t pixels = 0;
 };

@@ -41,7 +41,7 @@ Float readUnitWeight(BuildContext& ctx, Params& p, const std::string& name, Floa
     const Property* prop = p.find(name);
     if (!prop) return def;
     if (prop->type == PropertyType::Rgb || prop->type == PropertyType::Spectrum) {
-        const Spectrum s = readColourValue(p, name, Spectrum(def));  // an <rgb> above 1 is refused
+        const Spectrum s = p.getSpectrum(name, Spectrum(def));  // an <rgb> above 1 is refused when parsed
         return std::clamp((s.r + s.g + s.b) / 3, Float(0), Float(1));
     }
     return std::clamp(p.getFloat(name), Float(0), Float(1));

@@ -110,7 +110,7 @@ Float checkerColour(BuildContext& ctx, Params& p, const std::string& name, Spect
                     Spectrum& value, uint32_t& child) {
     const int object = findTextureChild(p, name);
     if (object < 0) {
-        value = readColourValue(p, name, def);
+        value = p.getSpectrum(name, def);
         return value.average();
     }
     if (const Property* prop = p.find(name))
@@ -246,19 +246,10 @@ bool hasParam(const Params& p, const std::string& name) {
     return p.has(name) || findTextureChild(p, name) >= 0;
 }
 
-Spectrum readColourValue(const Params& p, const std::string& name, Spectrum def) {
-    const Spectrum s = p.getSpectrum(name, def);
-    const bool unbounded = name == "eta" || name == "k" || name == "int_ior" || name == "ext_ior";
-    const Property* prop = p.find(name);
-    if (prop && prop->type == PropertyType::Rgb && !unbounded && s.maxValue() > 1)
-        p.fail(*prop, "must lie in [0, 1]: it is an <rgb> reflectance (Mitsuba refuses it too)");
-    return s;
-}
-
 Spectrum readSpectrumParam(BuildContext& ctx, Params& p, const std::string& name, Spectrum def,
                            Bsdf& b, BsdfParam param) {
     const int child = findTextureChild(p, name);
-    if (child < 0) return readColourValue(p, name, def);
+    if (child < 0) return p.getSpectrum(name, def);
     uint32_t index = 0;
     const Texture& t = textureFor(ctx, p, name, child, index);
     if (t.type == TextureType::Constant) return t.value;

@@ -18,12 +18,6 @@ int findTextureChild(const Params& p, const std::string& name);
 /// True when parameter `name` is given as a value or as a texture.
 bool hasParam(const Params& p, const std::string& name);
 
-/// A colour parameter given as a value (<rgb>, <spectrum>, <float>). Mitsuba turns an <rgb>
-/// outside an emitter into a bounded sRGB reflectance and refuses components above 1, except for
-/// the index-of-refraction parameters (its parser's is_unbounded_spectrum); so does this. A
-/// <spectrum> is clamped instead (spectrum_to_rgb); negative values are refused.
-Spectrum readColourValue(const Params& p, const std::string& name, Spectrum def);
-
 /// A colour parameter that may be a texture (Mitsuba's props.texture): a value (<rgb>, <float>,
 /// <spectrum>) is returned as is; a texture adds an entry (param, texture) to b.textures and
 /// returns the texture's mean (what Mitsuba's precomputations, e.g. plastic's sampling weight,

@@ -219,6 +219,11 @@ Property parseProperty(const XmlFile& f, const pugi::xml_node& n, const std::str
         std::vector<double> v = f.numbers(n, f.required(n, "value"), what, {1, 3});
         p.color =
             v.size() == 1 ? Spectrum(Float(v[0])) : Spectrum(Float(v[0]), Float(v[1]), Float(v[2]));
+        // Mitsuba makes an <rgb> a bounded sRGB reflectance wherever <spectrum> is a reflectance
+        // (negative values are refused where the value is read: Params::getSpectrum).
+        if (spectrumUse(category, p.name) == SpectrumUse::Reflectance && p.color.maxValue() > 1)
+            f.fail(n, "parameter '" + p.name +
+                          "' must lie in [0, 1]: it is an <rgb> reflectance (Mitsuba refuses it too)");
     } else if (tag == "spectrum") {
         p.type = PropertyType::Spectrum;
         p.color = spectrumValue(f, n, spectrumUse(category, p.name));

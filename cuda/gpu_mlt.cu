@@ -93,6 +93,8 @@ public:
         coarseSlots_ = 3 * size_t(bounces);
         fine_ = Buffer<uint8_t>(gpu_, std::max<size_t>(1, 3 * fineSlots_ * n));
         coarse_ = Buffer<uint16_t>(gpu_, std::max<size_t>(1, coarseSlots_ * n));
+        fine_.zero();  // slots past a chain's path stay unwritten: keep checkpoints reproducible
+        coarse_.zero();
         store_.fine = fine_.data();
         store_.coarse = coarse_.data();
         store_.fineChainStride = 1;
@@ -207,7 +209,7 @@ private:
     }
 
     /// The CPU's sortChains: Morton keys, a stable radix sort of (key, chain), and every per-chain
-    /// array permuted into the sorted order (a chain keeps its random stream index c).
+    /// array permuted into the sorted order (the state now at position c draws from stream c).
     void sortChains() {
         launchMltMortonKeys(view(), params_.width, params_.height, mortonKeys_.data(), order_.data());
         radixSortPairs(gpu_, mortonKeys_.span(), order_.span(), 64);

@@ -1,6 +1,7 @@
 // gpu_memory_test.cpp — the GPU memory estimate is a pure function of sizes: checked on the CPU.
 #include <gtest/gtest.h>
 
+#include "accel/test_scenes.h"
 #include "caustica/accel/bvh.h"
 #include "caustica/film/film.h"
 #include "caustica/integrators/path/gpu_memory.h"
@@ -91,6 +92,17 @@ TEST(GpuMemory, SizesComeFromTheScene) {
     EXPECT_EQ(s.samplesPerPass, 3);
     EXPECT_EQ(s.maxPathsInFlight, 7u);
     EXPECT_EQ(estimateGpuMemory(s).pathsInFlight, 7u);
+}
+
+// The BVH's share must be what GpuScene uploads, parent links included: the same four arrays
+// BvhStats::memoryBytes counts (the GPU test compares the estimate with the upload byte for byte).
+TEST(GpuMemory, BvhShareIsEveryUploadedArray) {
+    const Scene scene = test::makeRandomScene(test::sceneOf(500, 20, 5));
+    const Bvh bvh = buildBvh(scene);
+    ASSERT_FALSE(bvh.parents.empty());
+    const GpuRenderSizes s = gpuRenderSizes(scene, bvh, 1, GpuPathMode::Megakernel);
+    EXPECT_EQ(s.bvhParents, bvh.parents.size());
+    EXPECT_EQ(estimateGpuMemory(s).bvh, bvh.stats.memoryBytes);
 }
 
 TEST(GpuMemory, ModeNamesAndBytes) {

@@ -91,7 +91,13 @@ TEST(MltGpuMemory, OptionalTermsFollowTheSettings) {
     EXPECT_EQ(full.pixelWeights, 30 * 20 * sizeof(float));
     EXPECT_EQ(full.chainSort,
               100 * (sizeof(uint64_t) + sizeof(uint32_t)) + mltGpuPermuteScratchBytes(100, 4));
-    EXPECT_EQ(full.primitives, 100 * (sizeof(uint64_t) + sizeof(uint32_t)) + kMltCubTemporaryBytes);
+    EXPECT_EQ(full.primitives, 100 * (sizeof(uint64_t) + sizeof(uint32_t)) + kMltCubTemporaryBytes +
+                                   100 * kMltCubTemporaryBytesPerSortedElement);
+    // Sorted splats: chains x (k + 1) = 400 keys and values, and CUB's storage grows with them.
+    s.splat = MltSplatKind::Sort;
+    s.sortEvery = 0;
+    EXPECT_EQ(estimateMltGpuMemory(s, 4, 30 * 20).primitives,
+              400 * 2 * sizeof(uint32_t) + kMltCubTemporaryBytes + 400 * kMltCubTemporaryBytesPerSortedElement);
     // The permutation scratch holds the largest per-chain array: the fine store here.
     EXPECT_EQ(mltGpuPermuteScratchBytes(100, 4), 3 * (kMltCameraDims + 4 * 4) * 100u);
 }

@@ -24,12 +24,13 @@ MltGpuMemoryEstimate estimateMltGpuMemory(const MltSettings& s, uint32_t storedB
                      sizeof(uint32_t)) +
         n * (sizeof(float) + 2 * sizeof(uint32_t)) +  // large-step sums, large steps, accepted
         splats * sizeof(MltSplat) + size_t(kMltValuesPerPixel) * pixels * sizeof(double);
-    size_t largestSort = 0;  // bytes of a radix sort's alternate keys and values
+    size_t largestSort = 0, largestSortElements = 0;  // a radix sort's alternate keys and values
     if (s.splat == MltSplatKind::Atomic) {
         e.chainScratch += size_t(kMltValuesPerPixel) * pixels * sizeof(float);
     } else {
         e.chainScratch += splats * 2 * sizeof(uint32_t) + (size_t(pixels) + 1) * sizeof(uint32_t);
         largestSort = splats * 2 * sizeof(uint32_t);
+        largestSortElements = splats;
     }
     if (s.target == MltTarget::Relative) e.pixelWeights = size_t(pixels) * sizeof(float);
     e.bootstrap = mltBootstrapCount(s, pixels) * kMltBootstrapBytesPerSample +
@@ -38,8 +39,9 @@ MltGpuMemoryEstimate estimateMltGpuMemory(const MltSettings& s, uint32_t storedB
         e.chainSort = n * (sizeof(uint64_t) + sizeof(uint32_t)) +
                       mltGpuPermuteScratchBytes(s.chains, storedBounces);
         largestSort = std::max(largestSort, n * (sizeof(uint64_t) + sizeof(uint32_t)));
+        largestSortElements = std::max(largestSortElements, n);
     }
-    e.primitives = largestSort + kMltCubTemporaryBytes;
+    e.primitives = largestSort + kMltCubTemporaryBytes + largestSortElements * kMltCubTemporaryBytesPerSortedElement;
     return e;
 }
 

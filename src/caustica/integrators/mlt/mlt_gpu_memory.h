@@ -22,7 +22,7 @@ struct MltGpuMemoryEstimate {
     size_t bootstrap = 0;     // M x kMltBootstrapBytesPerSample, plus each chain's start and rays
     size_t chainSort = 0;     // Morton sorting (sortEvery > 0): keys, order, permutation scratch
     size_t primitives = 0;    // the primitives' cached scratch: the largest radix sort's
-                              // alternate arrays plus kMltCubTemporaryBytes
+                              // alternate arrays plus CUB's temporary storage
     size_t total() const {
         return chainState + chainScratch + pixelWeights + bootstrap + chainSort + primitives;
     }
@@ -30,8 +30,12 @@ struct MltGpuMemoryEstimate {
 
 /// Per bootstrap sample: its importance, pixel and ray count.
 inline constexpr size_t kMltBootstrapBytesPerSample = sizeof(float) + 2 * sizeof(uint32_t);
-/// Allowance for CUB's temporary storage (sorts and reductions need far less).
+/// Allowance for CUB's temporary storage: a fixed part (reductions, scans, small sorts) plus a
+/// part per element of the largest radix sort. CUB's one-sweep sort keeps a 256-bin histogram
+/// per tile of a few thousand elements and per 8-bit pass; 8 bytes per element bounds that for
+/// 64-bit keys (past a few million splats the fixed part alone would not).
 inline constexpr size_t kMltCubTemporaryBytes = size_t(1) << 20;
+inline constexpr size_t kMltCubTemporaryBytesPerSortedElement = 8;
 
 /// The estimate for `settings` (compact state) with `storedBounces` stored bounces
 /// (mltStoredBounces) on a film of `pixels` pixels.

@@ -35,7 +35,7 @@ GpuMemoryEstimate estimateGpuMemory(const GpuRenderSizes& s) {
               s.lights * sizeof(Light) + s.lightCdf * sizeof(float) + s.cylinders * sizeof(Cylinder) +
               s.lightTexels * sizeof(Spectrum) + s.textures * sizeof(Texture) + s.texels * sizeof(Spectrum);
     e.bvh = s.bvhNodes * sizeof(BvhNode) + s.bvhPrimIndices * sizeof(uint32_t) +
-            s.bvhPrims * sizeof(BvhPrimitive);
+            s.bvhPrims * sizeof(BvhPrimitive) + s.bvhParents * sizeof(uint32_t);
     const size_t samples = size_t(std::max(s.width, 0)) * size_t(std::max(s.height, 0)) *
                            size_t(std::max(s.samplesPerPass, 0));
     e.samplePass = samples * sizeof(PixelSample);
@@ -72,6 +72,7 @@ GpuRenderSizes gpuRenderSizes(const Scene& scene, const Bvh& bvh, int samplesPer
     s.bvhNodes = bvh.nodes.size();
     s.bvhPrimIndices = bvh.primIndices.size();
     s.bvhPrims = bvh.prims.size();
+    s.bvhParents = bvh.parents.size();  // uploaded for the short-stack and stackless traversals
     s.width = scene.film.width;
     s.height = scene.film.height;
     s.samplesPerPass = samplesPerPass;

@@ -24,7 +24,7 @@ struct GpuRenderSizes {
     size_t positions = 0, normals = 0, uvs = 0, triangles = 0, triangleShape = 0, spheres = 0,
            cylinders = 0, shapes = 0, bsdfs = 0, lights = 0, lightCdf = 0, lightTexels = 0,
            textures = 0, texels = 0;
-    size_t bvhNodes = 0, bvhPrimIndices = 0, bvhPrims = 0;
+    size_t bvhNodes = 0, bvhPrimIndices = 0, bvhPrims = 0, bvhParents = 0;
     int width = 0, height = 0;
     int samplesPerPass = 1;                 // K: samples per pixel in one pass
     GpuPathMode mode = GpuPathMode::Megakernel;
@@ -35,7 +35,7 @@ struct GpuRenderSizes {
 /// wavefront), bounded generously; `total()` is what must fit in free device memory.
 struct GpuMemoryEstimate {
     size_t scene = 0;       // scene arrays
-    size_t bvh = 0;         // BVH nodes, leaf-order primitive ids and records
+    size_t bvh = 0;         // BVH nodes, leaf-order primitive ids and records, parent links
     size_t pathState = 0;   // per path in flight: wavefront state, megakernel ray counters
     size_t samplePass = 0;  // one pass of PixelSamples (W * H * K)
     size_t scratch = 0;

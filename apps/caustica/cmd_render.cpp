@@ -197,8 +197,12 @@ std::function<int()> addRenderCommand(CLI::App& app) {
             request.cancel = &gCancel;
             request.checkpoint = checkpoint;
             request.resume = opt->resume;
-            const MltSettings mltSettings =
+            MltSettings mltSettings =
                 mltSettingsFrom(scene.integrator, opt->mlt, onGpu, uint64_t(scene.film.width) * uint64_t(scene.film.height));
+            if (opt->resume && opt->mlt.chains == 0 && scene.integrator.mltChains == 0) {
+                std::ifstream in(checkpoint, std::ios::binary);  // the drivers' defaults differ
+                if (const uint32_t chains = mltCheckpointChains(in)) mltSettings.chains = chains;
+            }
 #ifdef CAUSTICA_WITH_CUDA
             if (onGpu) {  // the GPU driver (cuda/gpu_mlt.h), on the own BVH
                 request.device = "cuda, " + cudaDeviceDescription();

@@ -15,8 +15,8 @@ namespace caustica::cli {
 
 void addMltOptions(CLI::App& cmd, MltCliOptions& o) {
     cmd.add_option("--mlt-chains", o.chains, "MLT: Markov chains stepped in lock step (default 1024 on the CPU; on a GPU half a chain "
-                   "per pixel, 4096 to 524288)")
-        ->check(CLI::Range(1u, 1u << 26));
+                   "per pixel, 4096 to 524288; with --resume, the checkpoint's)")
+        ->check(CLI::Range(1u, kMltMaxChains));
     cmd.add_option("--mlt-bootstrap", o.bootstrap,
                    "MLT: ordinary Monte Carlo samples that estimate b and select the chains' starts "
                    "(default 64 per pixel, at most 2^24, at least 4 per chain)")

@@ -4,6 +4,7 @@
 // layout. Whole renders saved and resumed: tests/e2e/mlt_test.cpp (CPU), tests/gpu (GPU).
 #include <gtest/gtest.h>
 
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -118,6 +119,31 @@ TEST(MltCheckpointFile, RefusesOtherSettingsSizesAndDamageByName) {
     EXPECT_NE(readError("CAMLTCK0 and more bytes", kKeys, sizesOf(c)).find("bad magic"),
               std::string::npos);
     EXPECT_EQ(readError(bytes, kKeys, sizesOf(c)), "");
+}
+
+// A setting read from the header of a file that checks out, and nothing from one that does not.
+TEST(MltCheckpointFile, PeeksAKeyOfAWholeFileOnly) {
+    const std::string bytes = written(someCheckpoint(), {{"width", 2}, {"height", 2}, {"chains", 37}});
+    auto peek = [&](const std::string& file, const char* name) {
+        std::stringstream in(file);
+        return peekMltCheckpointKey(in, kKeys, name);
+    };
+    EXPECT_EQ(peek(bytes, "chains"), std::optional<uint64_t>(37));
+    EXPECT_EQ(peek(bytes, "height"), std::optional<uint64_t>(2));
+    EXPECT_EQ(peek(bytes, "seed"), std::nullopt);  // not among the keys
+    std::string damaged = bytes;
+    damaged[damaged.size() - 12] ^= 0x10;
+    EXPECT_EQ(peek(damaged, "chains"), std::nullopt);
+    EXPECT_EQ(peek(bytes.substr(0, bytes.size() - 3), "chains"), std::nullopt);
+    EXPECT_EQ(peek("CAMLTCK0 and more bytes", "chains"), std::nullopt);
+    EXPECT_EQ(peek("", "chains"), std::nullopt);
+    // Larger than the reader's chunk: the checksum still covers the whole file.
+    MltCheckpoint big = someCheckpoint();
+    big.image.assign(kMltValuesPerPixel * 40000, 0.5);
+    std::string bigBytes = written(big, {{"width", 200}, {"height", 200}, {"chains", 2}});
+    EXPECT_EQ(peek(bigBytes, "width"), std::optional<uint64_t>(200));
+    bigBytes[bigBytes.size() / 2] ^= 0x01;
+    EXPECT_EQ(peek(bigBytes, "width"), std::nullopt);
 }
 
 // The GPU keeps slot s of chain c at s * chains + c (cells of 3 bytes for the fine store); the

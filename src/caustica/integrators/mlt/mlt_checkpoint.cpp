@@ -1,9 +1,12 @@
 #include "caustica/integrators/mlt/mlt_checkpoint.h"
 
+#include <algorithm>
 #include <cstring>
 #include <istream>
 #include <ostream>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "caustica/util/binary_io.h"
 #include "caustica/util/error.h"
@@ -39,6 +42,37 @@ MltCheckpointKeys mltCheckpointKeys(const MltStepParams& params, const MltSettin
             {"max depth", uint64_t(int64_t(params.path.maxDepth))},
             {"rr depth", uint64_t(int64_t(params.path.rrDepth))},
             {"filter (type x 2^32 + radius bits)", (uint64_t(filter.type) << 32) | floatBits(filter.radius)}};
+}
+
+std::optional<uint64_t> peekMltCheckpointKey(std::istream& in, const MltCheckpointKeys& keys, std::string_view name) {
+    // The checksum first, streaming: the last 8 bytes are the FNV-1a hash of all before them.
+    Fnv1a hash;
+    std::vector<char> chunk(size_t(1) << 20);
+    std::string head, tail;  // the file's first bytes (the header), its last 8 (the hash)
+    const size_t headBytes = sizeof kMagic + 4 + 8 * keys.size();
+    while (in.read(chunk.data(), std::streamsize(chunk.size())) || in.gcount() > 0) {
+        tail.append(chunk.data(), size_t(in.gcount()));
+        if (head.size() < headBytes) head.append(tail, 0, std::min(headBytes - head.size(), tail.size()));
+        if (tail.size() > 8) {
+            hash.add(reinterpret_cast<const unsigned char*>(tail.data()), tail.size() - 8);
+            tail.erase(0, tail.size() - 8);
+        }
+    }
+    if (head.size() < headBytes || tail.size() < 8) return std::nullopt;
+    uint64_t saved = 0;
+    for (int i = 0; i < 8; ++i) saved |= uint64_t(static_cast<unsigned char>(tail[size_t(i)])) << (8 * i);
+    if (saved != hash.h) return std::nullopt;
+    std::istringstream header(head);
+    BinaryReader r(header, "MLT checkpoint");
+    char magic[sizeof kMagic];
+    r.bytes(magic, sizeof magic);
+    if (std::memcmp(magic, kMagic, sizeof magic) != 0 || r.u32() != kVersion) return std::nullopt;
+    std::optional<uint64_t> found;
+    for (const auto& key : keys) {
+        const uint64_t value = r.u64();
+        if (name == key.first) found = value;
+    }
+    return found;
 }
 
 MltCheckpoint mltCheckpointOf(const MltStats& stats, const MltNormalisation& b, const MltChainBuffers& buffers) {

@@ -13,6 +13,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <iosfwd>
+#include <optional>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -27,6 +29,12 @@ namespace caustica {
 using MltCheckpointKeys = std::vector<std::pair<const char*, uint64_t>>;
 MltCheckpointKeys mltCheckpointKeys(const MltStepParams& params, const MltSettings& settings, uint32_t storedDims,
                                     const Filter& filter);
+
+/// The value `name` was saved with, read from a checkpoint's header once the whole file has
+/// checked out (magic, version, checksum); nullopt for a file that does not, or a name not among
+/// `keys` (this render's keys: their order is the file's). Lets a resume take a setting it leaves
+/// to its default from the checkpoint; readMltCheckpoint still verifies everything after that.
+std::optional<uint64_t> peekMltCheckpointKey(std::istream& in, const MltCheckpointKeys& keys, std::string_view name);
 
 /// Host copy of everything a checkpoint holds.
 struct MltCheckpoint {

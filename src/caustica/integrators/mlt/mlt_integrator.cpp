@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <istream>
+#include <optional>
 #include <ostream>
 #include <vector>
 
@@ -44,6 +45,14 @@ uint32_t mltStoredBounces(const PathSettings& settings) {
 uint32_t mltDefaultChains(bool gpu, uint64_t pixels) {
     if (!gpu) return kMltDefaultChains;
     return uint32_t(std::clamp<uint64_t>(pixels / 2, 4096, uint64_t(1) << 19));
+}
+
+uint32_t mltCheckpointChains(std::istream& in) {
+    // Only the keys' order matters here: the values are the file's.
+    const MltCheckpointKeys keys =
+        mltCheckpointKeys(MltStepParams{}, MltSettings{}, 0, Filter::fromDesc(FilterDesc{}));
+    const std::optional<uint64_t> chains = peekMltCheckpointKey(in, keys, "chains");
+    return chains && *chains >= 1 && *chains <= kMltMaxChains ? uint32_t(*chains) : 0;
 }
 
 uint64_t mltDefaultBootstrapSamples(uint32_t chains, uint64_t pixels) {
@@ -277,12 +286,15 @@ private:
             const size_t fineSlots = kMltCameraDims + 4 * size_t(bounces), coarseSlots = 3 * size_t(bounces);
             fine_ = Buffer<uint8_t>(device_, std::max<size_t>(1, 3 * fineSlots * n));
             coarse_ = Buffer<uint16_t>(device_, std::max<size_t>(1, coarseSlots * n));
+            fine_.zero();  // slots past a chain's path stay unwritten: keep checkpoints reproducible
+            coarse_.zero();
             store_.fineChainStride = fineSlots;  // chain-major: a chain's vector is contiguous
             store_.fineDimStride = 1;
             store_.coarseChainStride = coarseSlots;
             store_.coarseDimStride = 1;
         } else {
             values_ = Buffer<float>(device_, size_t(dims) * n);
+            values_.zero();
             store_.chainStride = dims;
             store_.dimStride = 1;
         }

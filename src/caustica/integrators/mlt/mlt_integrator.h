@@ -40,6 +40,13 @@ inline constexpr uint32_t kMltDefaultChains = 1024;
 /// found 2-4x fewer than that costs little tracing speed (its fig. 3), so small images keep the
 /// chains long instead.
 uint32_t mltDefaultChains(bool gpu, uint64_t pixels);
+/// Most chains a render may have (the command line's bound).
+inline constexpr uint32_t kMltMaxChains = uint32_t(1) << 26;
+/// The chain count of the MLT checkpoint in `in`, read once the whole file checks out (magic,
+/// version, checksum); 0 for a file that does not or a count outside [1, kMltMaxChains]. A resume
+/// that sets no chain count takes it: the CPU's and the GPU's defaults differ, and a checkpoint
+/// written by either driver resumes on the other.
+uint32_t mltCheckpointChains(std::istream& in);
 /// Default bootstrap size M: 64 per pixel, at most 2^24, at least 4 per chain. Fewer start the
 /// chains at the same bright samples (a sample of importance I starts about chains x I / (M b)
 /// chains, which then move together) and blur the relative target's brightness map: on

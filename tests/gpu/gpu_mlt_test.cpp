@@ -17,6 +17,7 @@
 #include "caustica/io/scene_loader.h"
 #include "caustica/util/error.h"
 #include "common/mlt_reference_check.h"
+#include "common/gpu_test_setup.h"
 #include "cuda/cuda_backend.h"
 #include "cuda/gpu_mlt.h"
 
@@ -34,9 +35,7 @@ using test::sourcePath;
 class GpuMlt : public ::testing::Test {
 protected:
     void SetUp() override {
-        registerCudaBackend();
-        if (cudaDeviceCountOrZero() == 0)
-            GTEST_SKIP() << "no CUDA GPU on this machine (cudaGetDeviceCount is 0): GPU MLT not exercised";
+        test::skipWithoutGpu("GPU MLT");
     }
 };
 

@@ -12,6 +12,7 @@
 
 #include "caustica/parallel/primitives.h"
 #include "caustica/util/error.h"
+#include "tests/common/gpu_test_setup.h"
 #include "cuda/cuda_backend.h"
 #include "cuda/cuda_check.h"
 #include "cuda/parallel_for_cuda.h"
@@ -26,10 +27,7 @@ using test::randomU32;
 class Gpu : public ::testing::Test {
 protected:
     void SetUp() override {
-        registerCudaBackend();
-        if (cudaDeviceCountOrZero() == 0)
-            GTEST_SKIP() << "no CUDA GPU on this machine (cudaGetDeviceCount is 0): GPU primitives "
-                            "not exercised";
+        test::skipWithoutGpu("GPU primitives");
     }
     const Device gpu = Device::cuda();
     const Device cpu = Device::cpu();

@@ -16,8 +16,8 @@
 #include "caustica/integrators/path/path_integrator.h"
 #include "caustica/io/scene_loader.h"
 #include "caustica/util/error.h"
-#include "common/mlt_reference_check.h"
 #include "common/gpu_test_setup.h"
+#include "common/mlt_reference_check.h"
 #include "cuda/cuda_backend.h"
 #include "cuda/gpu_mlt.h"
 

@@ -4,7 +4,6 @@
 #include <cstring>
 #include <istream>
 #include <ostream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -45,34 +44,31 @@ MltCheckpointKeys mltCheckpointKeys(const MltStepParams& params, const MltSettin
 }
 
 std::optional<uint64_t> peekMltCheckpointKey(std::istream& in, const MltCheckpointKeys& keys, std::string_view name) {
-    // The checksum first, streaming: the last 8 bytes are the FNV-1a hash of all before them.
-    Fnv1a hash;
-    std::vector<char> chunk(size_t(1) << 20);
-    std::string head, tail;  // the file's first bytes (the header), its last 8 (the hash)
-    const size_t headBytes = sizeof kMagic + 4 + 8 * keys.size();
-    while (in.read(chunk.data(), std::streamsize(chunk.size())) || in.gcount() > 0) {
-        tail.append(chunk.data(), size_t(in.gcount()));
-        if (head.size() < headBytes) head.append(tail, 0, std::min(headBytes - head.size(), tail.size()));
-        if (tail.size() > 8) {
-            hash.add(reinterpret_cast<const unsigned char*>(tail.data()), tail.size() - 8);
-            tail.erase(0, tail.size() - 8);
+    in.seekg(0, std::ios::end);
+    const std::streamoff size = in.tellg();
+    in.seekg(0);
+    const uint64_t headerBytes = sizeof kMagic + 4 + 8 * uint64_t(keys.size());
+    if (!in || size < 0 || uint64_t(size) < headerBytes + 8) return std::nullopt;
+    try {
+        BinaryReader r(in, "MLT checkpoint");
+        char magic[sizeof kMagic];
+        r.bytes(magic, sizeof magic);
+        if (std::memcmp(magic, kMagic, sizeof magic) != 0 || r.u32() != kVersion) return std::nullopt;
+        std::optional<uint64_t> found;
+        for (const auto& key : keys)
+            if (const uint64_t value = r.u64(); name == key.first) found = value;
+        // The rest up to the trailing hash, in chunks, so that the whole file is checked.
+        std::vector<char> chunk(size_t(1) << 20);
+        for (uint64_t rest = uint64_t(size) - headerBytes - 8; rest > 0;) {
+            const size_t n = size_t(std::min<uint64_t>(rest, chunk.size()));
+            r.bytes(chunk.data(), n);
+            rest -= n;
         }
+        r.checkHash();
+        return found;
+    } catch (const Error&) {
+        return std::nullopt;  // truncated or damaged
     }
-    if (head.size() < headBytes || tail.size() < 8) return std::nullopt;
-    uint64_t saved = 0;
-    for (int i = 0; i < 8; ++i) saved |= uint64_t(static_cast<unsigned char>(tail[size_t(i)])) << (8 * i);
-    if (saved != hash.h) return std::nullopt;
-    std::istringstream header(head);
-    BinaryReader r(header, "MLT checkpoint");
-    char magic[sizeof kMagic];
-    r.bytes(magic, sizeof magic);
-    if (std::memcmp(magic, kMagic, sizeof magic) != 0 || r.u32() != kVersion) return std::nullopt;
-    std::optional<uint64_t> found;
-    for (const auto& key : keys) {
-        const uint64_t value = r.u64();
-        if (name == key.first) found = value;
-    }
-    return found;
 }
 
 MltCheckpoint mltCheckpointOf(const MltStats& stats, const MltNormalisation& b, const MltChainBuffers& buffers) {

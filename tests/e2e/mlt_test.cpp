@@ -80,7 +80,16 @@ TEST(MltConvergence, CornellBoxFloatSortTwoProposalsMortonSorted) {
     checkAgainstReference(kBox, s, false);
 }
 
-TEST(MltConvergence, CornellWater) { checkAgainstReference(kWater, smallMltSettings(), true); }
+// cornell-water under the relative target runs with the default settings (1024 chains, 64
+// bootstrap samples per pixel) and 192 mutations per pixel. With the small settings' 4096 chains
+// of 96 steps each, its block errors were too heavy-tailed for six runs to estimate their
+// variance: the light that the water surface reflects onto the ceiling, found rarely, was missing
+// from all six runs of a block or overshot in one, and the mean z^2 passed its bound for 4 of 8
+// sets of seeds (5.1-6.0; with k = 4: up to 9.0). With the defaults it stayed within 1.0-2.6 over
+// the same 8 sets (k = 4, 64 mutations: 1.5-3.5), while a 15% error gave 6.7-13.8.
+TEST(MltConvergence, CornellWater) {
+    checkAgainstReference({kWater.scene, kWater.reference, 192, kWater.detectableError}, MltSettings{}, true);
+}
 
 // Kelemen's luminance target with the large-step combination: same image, power kept.
 TEST(MltConvergence, CornellWaterLuminanceTarget) {
@@ -98,7 +107,7 @@ TEST(MltConvergence, CornellBoxNoLargeSteps) {
 }
 
 TEST(MltConvergence, CornellWaterFourProposals) {
-    MltSettings s = smallMltSettings();
+    MltSettings s;  // the defaults, as in CornellWater
     s.proposals = 4;
     s.splat = MltSplatKind::Sort;
     checkAgainstReference({kWater.scene, kWater.reference, 64, 0}, s, false);

@@ -92,6 +92,7 @@ def main():
                            'samples': st['samples'], 'rays': st['rays'], 'relmse': m['relmse'],
                            'relmse_ref_noise_removed': m.get('relmse_ref_noise_removed', ''),
                            'relmse_worst_1pct_share': m.get('relmse_worst_1pct_share', ''),
+                           'mean_ratio': m.get('mean_ratio', ''),
                            'mlt_b': st.get('mlt_b', ''), 'mlt_iterations': st.get('mlt_iterations', ''),
                            'mlt_splat_seconds': st.get('mlt_splat_seconds', ''),
                            'mlt_sort_seconds': st.get('mlt_sort_seconds', ''),

@@ -1,11 +1,23 @@
 // caustica compare A B — error metrics of image A against reference B.
+#include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "commands.h"
 #include "caustica/film/image_compare.h"
 #include "caustica/io/image_io.h"
 
 namespace caustica::cli {
+
+namespace {
+/// A JSON number; null for NaN and infinities, which JSON cannot hold.
+std::string jsonNumber(double v) {
+    if (!std::isfinite(v)) return "null";
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.9g", v);
+    return buf;
+}
+}  // namespace
 
 std::function<int()> addCompareCommand(CLI::App& app) {
     struct Options {
@@ -27,17 +39,19 @@ std::function<int()> addCompareCommand(CLI::App& app) {
         const bool withVar = !opt->referenceVariance.empty();
         const ErrorMetrics m = withVar ? compareImages(a, b, readImage(opt->referenceVariance)) : compareImages(a, b);
         if (opt->json) {
-            std::printf("{\"mse\": %.9g, \"rmse\": %.9g, \"relmse\": %.9g, \"mae\": %.9g, \"pixels\": %zu, "
-                        "\"relmse_worst_1pct_share\": %.9g",
-                        m.mse, m.rmse, m.relMse, m.mae, m.pixels, m.relMseWorstShare);
+            std::printf("{\"mse\": %s, \"rmse\": %s, \"relmse\": %s, \"mae\": %s, \"pixels\": %zu, "
+                        "\"relmse_worst_1pct_share\": %s, \"mean_ratio\": %s",
+                        jsonNumber(m.mse).c_str(), jsonNumber(m.rmse).c_str(), jsonNumber(m.relMse).c_str(),
+                        jsonNumber(m.mae).c_str(), m.pixels, jsonNumber(m.relMseWorstShare).c_str(),
+                        jsonNumber(m.meanRatio).c_str());
             if (withVar)
-                std::printf(", \"mse_ref_noise_removed\": %.9g, \"relmse_ref_noise_removed\": %.9g",
-                            m.mseRefNoiseRemoved, m.relMseRefNoiseRemoved);
+                std::printf(", \"mse_ref_noise_removed\": %s, \"relmse_ref_noise_removed\": %s",
+                            jsonNumber(m.mseRefNoiseRemoved).c_str(), jsonNumber(m.relMseRefNoiseRemoved).c_str());
             std::printf("}\n");
         } else {
             std::printf("MSE     %.6g\nRMSE    %.6g\nrelMSE  %.6g\nMAE     %.6g\npixels  %zu\n"
-                        "relMSE share of the worst 1%% of pixels  %.3g\n",
-                        m.mse, m.rmse, m.relMse, m.mae, m.pixels, m.relMseWorstShare);
+                        "relMSE share of the worst 1%% of pixels  %.3g\nmean / reference mean  %.4g\n",
+                        m.mse, m.rmse, m.relMse, m.mae, m.pixels, m.relMseWorstShare, m.meanRatio);
             if (withVar)
                 std::printf("MSE    (reference noise removed) %.6g\nrelMSE (reference noise removed) %.6g\n",
                             m.mseRefNoiseRemoved, m.relMseRefNoiseRemoved);

@@ -101,6 +101,11 @@ TEST_F(Cli, CompareAndInfo) {
     ASSERT_EQ(c.exitCode, 0) << c.output;
     EXPECT_NE(c.output.find("\"mse\": 0"), std::string::npos) << c.output;
     EXPECT_NE(c.output.find("\"relmse_worst_1pct_share\": 0"), std::string::npos) << c.output;
+    EXPECT_NE(c.output.find("\"mean_ratio\": 1"), std::string::npos) << c.output;
+    writeImage(path("black.exr"), Image(8, 8));  // no mean to divide by: null, JSON has no NaN
+    Result black = run("compare " + path("c.exr") + " " + path("black.exr") + " --json");
+    ASSERT_EQ(black.exitCode, 0) << black.output;
+    EXPECT_NE(black.output.find("\"mean_ratio\": null"), std::string::npos) << black.output;
     EXPECT_TRUE(fs::exists(path("err.png")));
     Result i = run("info " + box);
     ASSERT_EQ(i.exitCode, 0) << i.output;

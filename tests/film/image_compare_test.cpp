@@ -28,6 +28,10 @@ TEST(ImageCompare, HandComputedMetrics) {
     EXPECT_DOUBLE_EQ(m.mae, 1.0);
     const double rel = (0 + 1 / 1.01 + 4 / 1.01 + 1 / 1.01 + 0 / 0.01 + 4 / 4.01) / 6;
     EXPECT_NEAR(m.relMse, rel, 1e-15);
+    EXPECT_DOUBLE_EQ(m.meanRatio, 6.0 / 6.0);  // both sum to 6
+    EXPECT_DOUBLE_EQ(compareImages(makeImage(1, 1, {1, 2, 3}), makeImage(1, 1, {2, 2, 2})).meanRatio, 1.0);
+    EXPECT_DOUBLE_EQ(compareImages(makeImage(1, 1, {1, 1, 1}), makeImage(1, 1, {4, 0, 0})).meanRatio, 0.75);
+    EXPECT_TRUE(std::isnan(compareImages(test, makeImage(2, 1, {0, 0, 0, 0, 0, 0})).meanRatio));
 }
 
 // The share of relMse carried by the worst 1% of pixels (rounded up): one bad pixel among 200 carries

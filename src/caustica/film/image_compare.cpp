@@ -60,18 +60,21 @@ ErrorMetrics compareImages(const Image& test, const Image& reference) {
     m.pixels = test.pixelCount();
     if (m.pixels == 0) return m;
     // Sequential double sums: deterministic, and images are small enough.
-    double se = 0, rel = 0, ae = 0;
+    double se = 0, rel = 0, ae = 0, sumTest = 0, sumRef = 0;
     for (size_t i = 0; i < test.rgb.size(); ++i) {
         const double a = test.rgb[i], b = reference.rgb[i], d = a - b;
         se += d * d;
         rel += d * d / (b * b + kRelMseEpsilon);
         ae += std::fabs(d);
+        sumTest += a;
+        sumRef += b;
     }
     const double n = double(test.rgb.size());
     m.mse = se / n;
     m.rmse = std::sqrt(m.mse);
     m.relMse = rel / n;
     m.mae = ae / n;
+    m.meanRatio = sumRef != 0 ? sumTest / sumRef : std::nan("");
     m.relMseWorstShare = worstPercentShare(relativeErrorPerPixel(test, reference));
     return m;
 }

@@ -14,7 +14,10 @@ namespace caustica {
 ///   mae    = mean |a - b|
 /// `pixels` is the number of pixels compared. relMseWorstShare is the fraction of relMse that the
 /// worst 1% of pixels carry (at least one pixel): about 0.01-0.05 for even noise, near 1 when a few
-/// outliers (fireflies, a Metropolis chain's blotch) make up the error.
+/// outliers (fireflies, a Metropolis chain's blotch) make up the error. meanRatio is the test
+/// image's mean over all pixels and channels divided by the reference's (NaN for a black
+/// reference): an error in overall brightness, which relMse hides among the noise, and a start-up
+/// bias of Metropolis chains shows as a ratio away from 1.
 /// With the reference's per-pixel variance (the variance of its mean, e.g. REF.var.exr), the
 /// expected share of the reference's own noise is subtracted as well: E[(a - b)^2] = (a - r)^2 +
 /// var(b) for an exact value r, so mseRefNoiseRemoved and relMseRefNoiseRemoved estimate the test
@@ -22,6 +25,7 @@ namespace caustica {
 struct ErrorMetrics {
     double mse = 0, rmse = 0, relMse = 0, mae = 0;
     double relMseWorstShare = 0;
+    double meanRatio = 0;
     double mseRefNoiseRemoved = 0, relMseRefNoiseRemoved = 0;  // only with a reference variance
     size_t pixels = 0;
 };

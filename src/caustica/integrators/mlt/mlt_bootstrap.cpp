@@ -22,7 +22,8 @@ MltBootstrapPlan planMltBootstrap(std::vector<float>& importance, const std::vec
     for (float I : importance) plan.importanceSum += double(I);
     if (!(plan.importanceSum > 0))
         throw Error("MLT: none of the " + std::to_string(plan.samples) +
-                    " bootstrap paths that estimate b carries light (the image is black); check the emitters");
+                    " bootstrap paths that estimate b carries light: the image is black (check the emitters) "
+                    "or the bootstrap is too small (--mlt-bootstrap)");
     plan.starts = mltChainStarts(importance.data(), m, settings.chains, settings.start, seed);
     return plan;
 }

@@ -83,7 +83,7 @@ public:
         : Impl(scene, path, s, seed),
           scene_(scene, bvh),
           film_(scene.film.filter, scene.film.width, scene.film.height),
-          buf_(gpu_, s.chains, s.proposals, pixels_, s.splat) {
+          buf_(gpu_, s.chains, s.proposals, pixels_, s.splat, mltSplatBatch(s, pixels_)) {
         const uint32_t n = s.chains;
         const uint32_t bounces = mltStoredBounces(path);
         // Compact store, dimension-major (coordinate d of chain c at d * chains + c): a warp's
@@ -151,20 +151,29 @@ public:
         MltStepParams p = params_;
         p.iteration = uint32_t(stats.iterations);
         p.b = float(b_.b0);
-        const MltChainView<CompactChainStore> v = view();
+        const MltChainView<CompactChainStore> v = buf_.view(store_, stats.iterations);
 
         return mltTimedIteration(
-            stats, b_, settings, secondsSince, [&] { launchMltProposals(scene_.view(), scene_.intersector(), v, p); },
+            stats, b_, settings, buf_.batch, secondsSince,
+            [&] { launchMltProposals(scene_.view(), scene_.intersector(), v, p); },
             [&] {
                 launchMltAdvance(v, p);
                 return buf_.reduceCounters(gpu_);  // on the device; each reduction waits for the advance
             },
-            [&] { splat(); }, [&] { sortChains(); });
+            [&] { splat(buf_.batch, buf_.image.data()); }, [&] { sortChains(); });
     }
 
-    Image develop() const override {
-        const std::vector<double> sums = buf_.image.toHost();  // cudaMemcpy waits for the splats
-        return film_.develop(sums.data(), b_, double(settings.chains) * settings.proposals * double(stats.iterations));
+    Image develop() override {
+        const double total = double(settings.chains) * settings.proposals * double(stats.iterations);
+        const uint64_t pending = stats.iterations % buf_.batch;
+        if (pending == 0) {
+            const std::vector<double> sums = buf_.image.toHost();  // cudaMemcpy waits for the splats
+            return film_.develop(sums.data(), b_, total);
+        }
+        // The unfinished batch goes into a device copy of the sums, as on the CPU.
+        Buffer<double> sums(gpu_, buf_.image.toHost());
+        splat(pending, sums.data());
+        return film_.develop(sums.toHost().data(), b_, total);
     }
 
     // Checkpoints hold the CPU driver's chain-major store: the dimension-major arrays are
@@ -195,16 +204,17 @@ private:
     }
 
     MltChainView<CompactChainStore> view() { return buf_.view(store_); }
-    MltSplatView splatView() { return buf_.splatView(film_, params_.width, params_.height); }
 
-    void splat() {
-        const MltSplatView v = splatView();
+    /// Adds the splats of the first `iterations` slots to `target` (device memory).
+    void splat(uint64_t iterations, double* target) {
+        const MltSplatView v = buf_.splatView(film_, params_.width, params_.height, iterations, target);
         if (settings.splat == MltSplatKind::Atomic) {
             launchMltSplatAtomic(v, pixels_);
             return;
         }
         launchMltSplatKeys(v, buf_.sortKeys.data(), buf_.sortValues.data());
-        radixSortPairs(gpu_, buf_.sortKeys.span(), buf_.sortValues.span(), 32);
+        radixSortPairs(gpu_, Span<uint32_t>(buf_.sortKeys.data(), v.count),
+                       Span<uint32_t>(buf_.sortValues.data(), v.count), 32);
         launchMltSplatGather(v, buf_.pixelStart.data(), pixels_);
     }
 

@@ -36,6 +36,9 @@ MltCheckpoint someCheckpoint() {
     c.usedDims = {11, 18};
     c.image.assign(kMltValuesPerPixel * 4, 0.0);
     for (size_t i = 0; i < c.image.size(); ++i) c.image[i] = 0.1 * double(i);
+    // Batches of 4 iterations, 2 splats an iteration: 7 iterations leave 3 x 2 splats pending.
+    for (int i = 0; i < 6; ++i)
+        c.pendingSplats.push_back(MltSplat{Vec2f(0.25f * float(i), 1), Spectrum(float(i)), Spectrum(0.5f * float(i))});
     return c;
 }
 
@@ -47,6 +50,8 @@ MltCheckpointSizes sizesOf(const MltCheckpoint& c) {
     s.values = c.values.size();
     s.chains = c.pos.size();
     s.image = c.image.size();
+    s.splatsPerIteration = 2;
+    s.splatBatch = 4;
     return s;
 }
 
@@ -97,6 +102,10 @@ TEST(MltCheckpointFile, ReadsBackWhatWasWritten) {
     EXPECT_EQ(r.importance, c.importance);
     EXPECT_EQ(r.usedDims, c.usedDims);
     EXPECT_EQ(r.image, c.image);
+    ASSERT_EQ(r.pendingSplats.size(), 6u);
+    EXPECT_EQ(r.pendingSplats[5].pos.x, 1.25f);
+    EXPECT_EQ(r.pendingSplats[5].value.b, 5.0f);
+    EXPECT_EQ(r.pendingSplats[5].largeValue.r, 2.5f);
 }
 
 TEST(MltCheckpointFile, RefusesOtherSettingsSizesAndDamageByName) {
@@ -110,6 +119,10 @@ TEST(MltCheckpointFile, RefusesOtherSettingsSizesAndDamageByName) {
     MltCheckpointSizes sizes = sizesOf(c);
     sizes.pixelWeights = 0;  // a luminance-target render
     EXPECT_NE(readError(bytes, kKeys, sizes).find("pixel weights holds 4 values, expected 0"),
+              std::string::npos);
+    sizes = sizesOf(c);
+    sizes.splatBatch = 8;  // 7 iterations of an unfinished batch would be pending
+    EXPECT_NE(readError(bytes, kKeys, sizes).find("unfinished splat batch holds 6 values, expected 14"),
               std::string::npos);
     std::string damaged = bytes;
     damaged[damaged.size() - 12] ^= 0x10;

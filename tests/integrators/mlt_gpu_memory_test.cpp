@@ -39,7 +39,9 @@ TEST(MltGpuMemory, ChainBuffersAreWhatMltChainBuffersAllocates) {
     for (MltSplatKind splat : {MltSplatKind::Atomic, MltSplatKind::Sort}) {
         MltSettings s = someSettings(37);
         s.splat = splat;
-        const MltChainBuffers buffers(Device::cpu(), s.chains, s.proposals, pixels, splat);
+        // 37 x 4 splats per iteration on 200 pixels: batches of 2 iterations.
+        ASSERT_EQ(mltSplatBatch(s, pixels), 2u);
+        const MltChainBuffers buffers(Device::cpu(), s.chains, s.proposals, pixels, splat, mltSplatBatch(s, pixels));
         const MltGpuMemoryEstimate e = estimateMltGpuMemory(s, bounces, pixels);
         const size_t perChainState =
             sizeof(Vec2f) + sizeof(Spectrum) + sizeof(float) + sizeof(uint16_t);
@@ -93,11 +95,15 @@ TEST(MltGpuMemory, OptionalTermsFollowTheSettings) {
               100 * (sizeof(uint64_t) + sizeof(uint32_t)) + mltGpuPermuteScratchBytes(100, 4));
     EXPECT_EQ(full.primitives, 100 * (sizeof(uint64_t) + sizeof(uint32_t)) + kMltCubTemporaryBytes +
                                    100 * kMltCubTemporaryBytesPerSortedElement);
-    // Sorted splats: chains x (k + 1) = 400 keys and values, and CUB's storage grows with them.
+    // Sorted splats: a batch of 2 iterations (600 pixels, chains x (k + 1) = 400 splats an
+    // iteration), 800 keys and values, and CUB's storage grows with them.
     s.splat = MltSplatKind::Sort;
     s.sortEvery = 0;
     EXPECT_EQ(estimateMltGpuMemory(s, 4, 30 * 20).primitives,
-              400 * 2 * sizeof(uint32_t) + kMltCubTemporaryBytes + 400 * kMltCubTemporaryBytesPerSortedElement);
+              800 * 2 * sizeof(uint32_t) + kMltCubTemporaryBytes + 800 * kMltCubTemporaryBytesPerSortedElement);
+    s.splatBatch = 5;  // set, not chosen
+    EXPECT_EQ(estimateMltGpuMemory(s, 4, 30 * 20).primitives,
+              2000 * 2 * sizeof(uint32_t) + kMltCubTemporaryBytes + 2000 * kMltCubTemporaryBytesPerSortedElement);
     // The permutation scratch holds the largest per-chain array: the fine store here.
     EXPECT_EQ(mltGpuPermuteScratchBytes(100, 4), 3 * (kMltCameraDims + 4 * 4) * 100u);
 }

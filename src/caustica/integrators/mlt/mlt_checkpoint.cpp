@@ -15,7 +15,7 @@ namespace caustica {
 namespace {
 
 constexpr char kMagic[8] = {'C', 'A', 'M', 'L', 'T', 'C', 'K', '1'};
-constexpr uint32_t kVersion = 2;  // 2: b0 and the large-step layer of the splat sums
+constexpr uint32_t kVersion = 3;  // 2: b0 and the large-step layer of the splat sums; 3: splat batches
 
 uint64_t floatBits(float f) {
     uint32_t u;
@@ -40,7 +40,8 @@ MltCheckpointKeys mltCheckpointKeys(const MltStepParams& params, const MltSettin
             {"s2 bits", floatBits(settings.mutation.s2)},
             {"max depth", uint64_t(int64_t(params.path.maxDepth))},
             {"rr depth", uint64_t(int64_t(params.path.rrDepth))},
-            {"filter (type x 2^32 + radius bits)", (uint64_t(filter.type) << 32) | floatBits(filter.radius)}};
+            {"filter (type x 2^32 + radius bits)", (uint64_t(filter.type) << 32) | floatBits(filter.radius)},
+            {"splat batch", mltSplatBatch(settings, uint32_t(params.width) * uint32_t(params.height))}};
 }
 
 std::optional<uint64_t> peekMltCheckpointKey(std::istream& in, const MltCheckpointKeys& keys, std::string_view name) {
@@ -80,6 +81,8 @@ MltCheckpoint mltCheckpointOf(const MltStats& stats, const MltNormalisation& b, 
     c.importance = buffers.importance.toHost();
     c.usedDims = buffers.usedDims.toHost();
     c.image = buffers.image.toHost();
+    c.pendingSplats.resize(size_t(stats.iterations % buffers.batch) * buffers.splatsPerIteration);
+    buffers.splats.copyToHost(Span<MltSplat>(c.pendingSplats.data(), c.pendingSplats.size()));
     return c;
 }
 
@@ -104,6 +107,7 @@ void writeMltCheckpoint(std::ostream& out, const MltCheckpointKeys& keys, const 
     array(c.importance);
     array(c.usedDims);
     array(c.image);
+    array(c.pendingSplats);
     w.u64(w.hash());
 }
 
@@ -116,6 +120,8 @@ MltCheckpointSizes mltCheckpointSizes(const MltSettings& settings, uint32_t pixe
     sizes.values = values;
     sizes.chains = settings.chains;
     sizes.image = buffers.image.size();
+    sizes.splatsPerIteration = buffers.splatsPerIteration;
+    sizes.splatBatch = buffers.batch;
     return sizes;
 }
 
@@ -156,6 +162,8 @@ MltCheckpoint readMltCheckpoint(std::istream& in, const MltCheckpointKeys& keys,
     array(c.importance, sizes.chains, "importances");
     array(c.usedDims, sizes.chains, "used dimensions");
     array(c.image, sizes.image, "splat sums");
+    array(c.pendingSplats, size_t(s.iterations % std::max<uint32_t>(sizes.splatBatch, 1)) * sizes.splatsPerIteration,
+          "unfinished splat batch");
     r.checkHash();
     return c;
 }
@@ -166,6 +174,7 @@ void restoreMltCheckpoint(const MltCheckpoint& c, MltStats& stats, MltNormalisat
     buffers.importance.copyFromHost(c.importance);
     buffers.usedDims.copyFromHost(c.usedDims);
     buffers.image.copyFromHost(c.image);
+    buffers.splats.copyFromHost(c.pendingSplats);
     b = c.b;
     stats = c.stats;
 }

@@ -4,7 +4,8 @@
 //
 //   char[8] "CAMLTCK1" | u32 version | u64 values that must match (mltCheckpointKeys)
 //   counters and timings | b (sum, count, b0) | pixel weights | chain store (fine, coarse, float)
-//   | film positions, F, I, U of the chains | splat sums | u64 FNV-1a hash of all before it
+//   | film positions, F, I, U of the chains | splat sums | the splats of the unfinished batch
+//   | u64 FNV-1a hash of all before it
 //
 // The chain store is written chain-major (coordinate slot s of chain c at c * slots + s, the CPU
 // driver's layout); a driver keeping another layout converts with mltTransposeCells.
@@ -49,12 +50,15 @@ struct MltCheckpoint {
     std::vector<float> importance;
     std::vector<uint16_t> usedDims;
     std::vector<double> image;        // kMltValuesPerPixel splat sums per pixel
+    std::vector<MltSplat> pendingSplats;  // the unfinished batch: (iterations % batch) x n (k + 1)
 };
 
 /// Element counts a checkpoint's arrays must have to fit a renderer (the chains' per-chain
 /// arrays all have `chains` elements).
 struct MltCheckpointSizes {
     size_t pixelWeights = 0, fine = 0, coarse = 0, values = 0, chains = 0, image = 0;
+    size_t splatsPerIteration = 0;  // the unfinished batch has (iterations % splatBatch) x this
+    uint32_t splatBatch = 1;
 };
 /// The sizes for a renderer with these settings, pixels and buffers, whose chain store has
 /// `fine`, `coarse` and `values` elements (0 for arrays its store does not have).

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "caustica/integrators/mlt/mlt_buffers.h"
 #include "caustica/integrators/mlt/mlt_impl.h"
 #include "caustica/integrators/mlt/mlt_splat.h"
 
@@ -16,7 +17,8 @@ size_t mltGpuPermuteScratchBytes(uint32_t chains, uint32_t storedBounces) {
 
 MltGpuMemoryEstimate estimateMltGpuMemory(const MltSettings& s, uint32_t storedBounces,
                                           uint32_t pixels) {
-    const size_t n = s.chains, proposals = n * s.proposals, splats = n * (size_t(s.proposals) + 1);
+    const size_t n = s.chains, proposals = n * s.proposals;
+    const size_t splats = size_t(mltSplatBatch(s, pixels)) * n * (size_t(s.proposals) + 1);  // a whole batch
     MltGpuMemoryEstimate e;
     e.chainState = n * mltBytesPerChain(MltStateKind::Compact, storedBounces);
     e.chainScratch =

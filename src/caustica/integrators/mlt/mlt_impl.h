@@ -27,7 +27,9 @@ struct MltRenderer::Impl {
     virtual ~Impl() = default;
     virtual void bootstrap() = 0;
     virtual uint64_t iterate() = 0;
-    virtual Image develop() const = 0;
+    /// Not const: the splats of an unfinished batch go through the splat scratch buffers into a
+    /// copy of the splat sums; the render's state is left as it was.
+    virtual Image develop() = 0;
     /// Resumable checkpoints (mlt_checkpoint.h): the whole state, written and restored.
     virtual void save(std::ostream& out) const = 0;
     virtual void load(std::istream& in) = 0;

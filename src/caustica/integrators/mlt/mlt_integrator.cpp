@@ -72,6 +72,8 @@ void validateMltSettings(const MltSettings& s) {
         throw Error("MLT large-step probability must be in [0, 1]");
     if (!(s.mutation.s1 > 0 && s.mutation.s2 >= s.mutation.s1 && s.mutation.s2 < 1))
         throw Error("MLT small-step sizes must satisfy 0 < s1 <= s2 < 1");
+    if (uint64_t(std::max<uint32_t>(s.splatBatch, 1)) * s.chains * (uint64_t(s.proposals) + 1) > 0xffffffffull)
+        throw Error("MLT: a splat batch (iterations x chains x (proposals + 1)) must stay below 2^32 splats");
 }
 
 MltStepParams mltStepParams(const Scene& scene, const PathSettings& path, const MltSettings& s, uint64_t seed) {
@@ -174,7 +176,7 @@ public:
           accel_(accel),
           device_(Device::cpu()),
           film_(scene.film.filter, scene.film.width, scene.film.height),
-          buf_(device_, s.chains, s.proposals, pixels_, s.splat) {
+          buf_(device_, s.chains, s.proposals, pixels_, s.splat, mltSplatBatch(s, pixels_)) {
         const uint32_t n = s.chains;
         const uint32_t bounces = mltStoredBounces(path);
         allocateStore(n, bounces);
@@ -230,10 +232,10 @@ public:
         MltStepParams p = params_;
         p.iteration = uint32_t(stats.iterations);
         p.b = float(b_.b0);
-        const MltChainView<Store> v = view();
+        const MltChainView<Store> v = buf_.view(store_, stats.iterations);
 
         return mltTimedIteration(
-            stats, b_, settings, secondsSince,
+            stats, b_, settings, buf_.batch, secondsSince,
             [&] {
                 accel_.visit([&](const auto& intersector) {
                     parallelFor(device_, "mlt.propose", size_t(n) * k, [&](size_t item) {
@@ -245,11 +247,16 @@ public:
                 parallelFor(device_, "mlt.advance", n, [&](size_t c) { advanceChain(v, p, uint32_t(c)); }, 256);
                 return buf_.reduceCounters(device_);  // where they live, as on the GPU
             },
-            [&] { splat(); }, [&] { sortChains(); });
+            [&] { splat(buf_.batch, buf_.image.data()); }, [&] { sortChains(); });
     }
 
-    Image develop() const override {
-        return film_.develop(buf_.image.data(), b_, double(settings.chains) * settings.proposals * double(stats.iterations));
+    Image develop() override {
+        const double total = double(settings.chains) * settings.proposals * double(stats.iterations);
+        const uint64_t pending = stats.iterations % buf_.batch;
+        if (pending == 0) return film_.develop(buf_.image.data(), b_, total);
+        std::vector<double> sums = buf_.image.toHost();
+        splat(pending, sums.data());
+        return film_.develop(sums.data(), b_, total);
     }
 
     void save(std::ostream& out) const override {
@@ -310,10 +317,10 @@ private:
     }
 
     MltChainView<Store> view() { return buf_.view(store_); }
-    MltSplatView splatView() { return buf_.splatView(film_, params_.width, params_.height); }
 
-    void splat() {
-        const MltSplatView v = splatView();
+    /// Adds the splats of the first `iterations` slots to `target` (kMltValuesPerPixel sums per pixel).
+    void splat(uint64_t iterations, double* target) {
+        const MltSplatView v = buf_.splatView(film_, params_.width, params_.height, iterations, target);
         if (settings.splat == MltSplatKind::Atomic) {
             parallelFor(device_, "mlt.splat_atomic", v.count, [&](size_t i) { splatAtomic(v, uint32_t(i)); }, 256);
             parallelFor(device_, "mlt.splat_flush", pixels_, [&](size_t p) { flushAtomicPixel(v, uint32_t(p)); }, 256);
@@ -325,7 +332,7 @@ private:
             keys[i] = splatPixel(v, v.splats[i]);
             values[i] = uint32_t(i);
         }, 256);
-        radixSortPairs(device_, buf_.sortKeys.span(), buf_.sortValues.span(), 32);
+        radixSortPairs(device_, Span<uint32_t>(keys, v.count), Span<uint32_t>(values, v.count), 32);
         uint32_t* starts = buf_.pixelStart.data();
         parallelFor(device_, "mlt.splat_starts", size_t(pixels_) + 1, [&](size_t p) {
             findPixelStart(starts, keys, v.count, uint32_t(p));

@@ -64,6 +64,7 @@ struct MltSettings {
     uint32_t sortEvery = 0;               // Morton-sort the chains every N iterations; 0 = never
     MltStart start = MltStart::Bootstrap;
     MltTarget target = MltTarget::Relative;  // what the chains sample in proportion to (mlt_target.h)
+    uint32_t splatBatch = 0;              // iterations per splat pass; 0 = mltSplatBatch's choice
 };
 
 /// Bounces whose primary samples a chain stores: max_depth - 1 when bounded (the last segment
@@ -102,7 +103,8 @@ public:
     void bootstrap();
     /// One iteration of every chain. Returns the rays traced.
     uint64_t iterate();
-    /// The image so far: splat sums scaled by pixels / total chain splat weight, divided by the
+    /// The image so far (the splats of an unfinished batch included, without adding them to the
+    /// splat sums): splat sums scaled by pixels / total chain splat weight, divided by the
     /// filter's integral (and its coverage at the image border).
     Image develop() const;
     /// True once bootstrap() ran or a checkpoint was loaded.

@@ -51,7 +51,8 @@ def run(cmd):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument('scene')
-    ap.add_argument('--ref', required=True, help='reference image (.exr); REF.var.exr is used if present')
+    ap.add_argument('--ref', required=True,
+                    help='reference image (.exr or .pfm); REF.var.exr (REF.var.pfm) is used if present')
     ap.add_argument('--config', action='append', required=True, help='NAME or NAME:EXTRA-ARGS (repeatable)')
     ap.add_argument('--times', default='2,4,8,16', help='time budgets in seconds, comma separated')
     ap.add_argument('--repeat', type=int, default=1, help='independent renders per budget (seeds S..S+N-1)')
@@ -65,8 +66,9 @@ def main():
     ap.add_argument('--title', default='')
     a = ap.parse_args()
 
-    var = a.ref[:-4] + '.var.exr' if a.ref.endswith('.exr') else None
-    if var and not os.path.exists(var):
+    stem, ext = os.path.splitext(a.ref)
+    var = stem + '.var' + ext  # REF.var.exr beside REF.exr, REF.var.pfm beside REF.pfm
+    if not os.path.exists(var):
         var = None
     times = [float(t) for t in a.times.split(',')]
     configs = [parse_config(c) for c in a.config]

@@ -149,6 +149,45 @@ TEST_F(GpuMlt, ASavedAndResumedRenderEqualsAnUninterruptedOne) {
     EXPECT_EQ(resumed->stats().b, whole->stats().b);
 }
 
+// Splats in batches of 3 iterations: a checkpoint after 4 iterations carries the unfinished batch,
+// developing in the middle of a batch changes nothing, and a CPU checkpoint with a pending batch
+// develops on the GPU to the CPU's image up to rounding (the GPU contracts multiply-adds).
+TEST_F(GpuMlt, UnfinishedSplatBatchesAreResumedAndDeveloped) {
+    const Scene scene = loadScene(sourcePath("scenes/cornell-box/scene.xml"), {{"width", "16"}, {"height", "12"}});
+    const Accel accel(scene, AccelKind::Bvh);
+    MltSettings s = checkpointSettings();
+    s.splatBatch = 3;
+    const PathSettings path = pathSettingsFrom(scene.integrator);
+    const std::unique_ptr<MltRenderer> whole = makeGpuMltRenderer(scene, *accel.bvh(), path, s, 5);
+    whole->bootstrap();
+    for (int i = 0; i < 7; ++i) whole->iterate();
+
+    std::stringstream file;
+    {
+        const std::unique_ptr<MltRenderer> first = makeGpuMltRenderer(scene, *accel.bvh(), path, s, 5);
+        first->bootstrap();
+        for (int i = 0; i < 4; ++i) {
+            first->iterate();
+            first->develop();
+        }
+        first->save(file);
+    }
+    const std::unique_ptr<MltRenderer> resumed = makeGpuMltRenderer(scene, *accel.bvh(), path, s, 5);
+    resumed->load(file);
+    for (int i = 0; i < 3; ++i) resumed->iterate();
+    EXPECT_EQ(resumed->develop().rgb, whole->develop().rgb);
+
+    MltRenderer cpu(scene, accel, path, s, 5);
+    cpu.bootstrap();
+    for (int i = 0; i < 4; ++i) cpu.iterate();
+    std::stringstream cpuFile;
+    cpu.save(cpuFile);
+    const std::unique_ptr<MltRenderer> gpu = makeGpuMltRenderer(scene, *accel.bvh(), path, s, 5);
+    std::stringstream in(cpuFile.str());
+    gpu->load(in);
+    EXPECT_LT(maxRelativeDifference(gpu->develop(), cpu.develop()), 1e-5);
+}
+
 // Both drivers write the same format (chain-major store): a CPU checkpoint loads into the GPU
 // driver, which develops the same image from it and writes it back byte for byte; then it goes on.
 TEST_F(GpuMlt, ACpuCheckpointResumesOnTheGpu) {

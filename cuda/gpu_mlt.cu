@@ -165,7 +165,7 @@ public:
 
     Image develop() override {
         const double total = double(settings.chains) * settings.proposals * double(stats.iterations);
-        const uint64_t pending = stats.iterations % buf_.batch;
+        const uint64_t pending = buf_.pendingIterations(stats.iterations);
         if (pending == 0) {
             const std::vector<double> sums = buf_.image.toHost();  // cudaMemcpy waits for the splats
             return film_.develop(sums.data(), b_, total);

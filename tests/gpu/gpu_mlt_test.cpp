@@ -119,6 +119,19 @@ MltSettings checkpointSettings() {
     return s;
 }
 
+/// A GPU renderer bootstrapped and stepped `iterations` times (developing after each step with
+/// `developEachStep`, which must change nothing).
+std::unique_ptr<MltRenderer> gpuRendered(const Scene& scene, const Accel& accel, const MltSettings& s, int iterations,
+                                         bool developEachStep = false) {
+    std::unique_ptr<MltRenderer> mlt = makeGpuMltRenderer(scene, *accel.bvh(), pathSettingsFrom(scene.integrator), s, 5);
+    mlt->bootstrap();
+    for (int i = 0; i < iterations; ++i) {
+        mlt->iterate();
+        if (developEachStep) mlt->develop();
+    }
+    return mlt;
+}
+
 // A GPU render saved after some iterations and resumed in a new renderer ends with the image an
 // uninterrupted one gives, bit for bit, with the same counters.
 TEST_F(GpuMlt, ASavedAndResumedRenderEqualsAnUninterruptedOne) {
@@ -126,17 +139,9 @@ TEST_F(GpuMlt, ASavedAndResumedRenderEqualsAnUninterruptedOne) {
     const Accel accel(scene, AccelKind::Bvh);
     const MltSettings s = checkpointSettings();
     const PathSettings path = pathSettingsFrom(scene.integrator);
-    const std::unique_ptr<MltRenderer> whole = makeGpuMltRenderer(scene, *accel.bvh(), path, s, 5);
-    whole->bootstrap();
-    for (int i = 0; i < 8; ++i) whole->iterate();
-
+    const std::unique_ptr<MltRenderer> whole = gpuRendered(scene, accel, s, 8);
     std::stringstream file;
-    {
-        const std::unique_ptr<MltRenderer> first = makeGpuMltRenderer(scene, *accel.bvh(), path, s, 5);
-        first->bootstrap();
-        for (int i = 0; i < 3; ++i) first->iterate();
-        first->save(file);
-    }
+    gpuRendered(scene, accel, s, 3)->save(file);
     const std::unique_ptr<MltRenderer> resumed = makeGpuMltRenderer(scene, *accel.bvh(), path, s, 5);
     EXPECT_FALSE(resumed->started());
     resumed->load(file);
@@ -158,20 +163,9 @@ TEST_F(GpuMlt, UnfinishedSplatBatchesAreResumedAndDeveloped) {
     MltSettings s = checkpointSettings();
     s.splatBatch = 3;
     const PathSettings path = pathSettingsFrom(scene.integrator);
-    const std::unique_ptr<MltRenderer> whole = makeGpuMltRenderer(scene, *accel.bvh(), path, s, 5);
-    whole->bootstrap();
-    for (int i = 0; i < 7; ++i) whole->iterate();
-
+    const std::unique_ptr<MltRenderer> whole = gpuRendered(scene, accel, s, 7);
     std::stringstream file;
-    {
-        const std::unique_ptr<MltRenderer> first = makeGpuMltRenderer(scene, *accel.bvh(), path, s, 5);
-        first->bootstrap();
-        for (int i = 0; i < 4; ++i) {
-            first->iterate();
-            first->develop();
-        }
-        first->save(file);
-    }
+    gpuRendered(scene, accel, s, 4, true)->save(file);
     const std::unique_ptr<MltRenderer> resumed = makeGpuMltRenderer(scene, *accel.bvh(), path, s, 5);
     resumed->load(file);
     for (int i = 0; i < 3; ++i) resumed->iterate();

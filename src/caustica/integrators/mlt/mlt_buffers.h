@@ -71,6 +71,10 @@ struct MltChainBuffers {
                image.size() * sizeof(double) + accum.size() * sizeof(float);
     }
 
+    /// Iterations of an unfinished batch after `iterations` in all: their splats wait in the
+    /// first slots.
+    uint64_t pendingIterations(uint64_t iterations) const { return iterations % batch; }
+
     /// The kernels' view of iteration `iteration`: its splats go to slot iteration % batch.
     template <class Store>
     MltChainView<Store> view(const Store& store, uint64_t iteration = 0) {

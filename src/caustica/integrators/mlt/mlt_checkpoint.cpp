@@ -81,7 +81,7 @@ MltCheckpoint mltCheckpointOf(const MltStats& stats, const MltNormalisation& b, 
     c.importance = buffers.importance.toHost();
     c.usedDims = buffers.usedDims.toHost();
     c.image = buffers.image.toHost();
-    c.pendingSplats.resize(size_t(stats.iterations % buffers.batch) * buffers.splatsPerIteration);
+    c.pendingSplats.resize(size_t(buffers.pendingIterations(stats.iterations)) * buffers.splatsPerIteration);
     buffers.splats.copyToHost(Span<MltSplat>(c.pendingSplats.data(), c.pendingSplats.size()));
     return c;
 }

@@ -252,7 +252,7 @@ public:
 
     Image develop() override {
         const double total = double(settings.chains) * settings.proposals * double(stats.iterations);
-        const uint64_t pending = stats.iterations % buf_.batch;
+        const uint64_t pending = buf_.pendingIterations(stats.iterations);
         if (pending == 0) return film_.develop(buf_.image.data(), b_, total);
         std::vector<double> sums = buf_.image.toHost();
         splat(pending, sums.data());

@@ -5,7 +5,7 @@
 //     ray, on the 327,680-triangle displaced icosphere and on scenes/cornell-water at 640 x 640:
 //     the ray sets of bench_rays (bench_scenes.h), so CPU and GPU figures compare directly. The
 //     three variants must return the same hits; the table says whether they did.
-//  2. path-tracing samples/s of the megakernel against the wavefront (cuda/gpu_path.h) on
+//  2. path-tracing samples/s of the megakernel against the wavefront (the pass drivers, pass_driver.h) on
 //     scenes/cornell-box and scenes/cornell-water: one pass of K samples per pixel per run,
 //     download to the host included (what `caustica render --device cuda` pays per pass).
 // Each figure is the best of --reps timed runs after one warm-up (timed with CUDA events for the
@@ -30,14 +30,15 @@
 #include "bench_scenes.h"
 #include "caustica/accel/bvh.h"
 #include "caustica/accel/intersector.h"
-#include "caustica/integrators/path/path_integrator.h"
+#include "caustica/accel/accel.h"
+#include "caustica/accel/device_scene.h"
+#include "caustica/integrators/pass_driver.h"
+#include "caustica/integrators/path/path_settings.h"
 #include "caustica/io/scene_loader.h"
 #include "caustica/parallel/buffer.h"
 #include "caustica/util/error.h"
 #include "cuda/cuda_backend.h"
 #include "cuda/cuda_check.h"
-#include "cuda/gpu_path.h"
-#include "cuda/gpu_scene.h"
 #include "cuda/parallel_for_cuda.h"
 
 namespace caustica::bench_gpu {
@@ -134,7 +135,7 @@ struct PathRow {
 };
 
 /// Times the three traversal variants on one ray set (already on the device).
-RayRow benchRaySet(const std::string& sceneName, const char* rayName, const GpuScene& gpu,
+RayRow benchRaySet(const std::string& sceneName, const char* rayName, const DeviceScene& gpu,
                    const std::vector<Ray>& hostRays, bool anyHit, int reps) {
     RayRow row;
     row.scene = sceneName;
@@ -178,7 +179,7 @@ RayRow benchRaySet(const std::string& sceneName, const char* rayName, const GpuS
 void benchRays(const std::string& name, const Scene& scene, int reps, std::vector<RayRow>& rows) {
     const Bvh bvh = buildBvh(scene);  // parent links included: short-stack and stackless need them
     const bench::RaySets sets = bench::makeRaySets(scene, bvh);
-    const GpuScene gpu(scene, bvh);
+    const DeviceScene gpu(scene, bvh, Device::cuda());
     std::printf("%s: %u triangles, %zu spheres; %zu camera, %zu shadow, %zu bounce rays\n",
                 name.c_str(), uint32_t(scene.triangles.size()), scene.spheres.size(),
                 sets.camera.size(), sets.shadow.size(), sets.bounce.size());
@@ -193,15 +194,16 @@ PathRow benchPaths(const std::string& name, const Scene& scene, const Options& o
     row.width = scene.film.width;
     row.height = scene.film.height;
     row.spp = opt.spp;
-    const Bvh bvh = buildBvh(scene);
-    const PathSettings settings = pathSettingsFrom(scene.integrator);
-    const GpuPathMode modes[2] = {GpuPathMode::Megakernel, GpuPathMode::Wavefront};
+    const Accel accel(scene, AccelKind::Bvh);
+    IntegratorParams params(scene.integrator);
+    const PathSettings settings = readPathSettings(params);
+    const PathMode modes[2] = {PathMode::Megakernel, PathMode::Wavefront};
     for (int m = 0; m < 2; ++m) {
-        GpuPathRenderer renderer(scene, bvh, settings, modes[m], opt.spp);
+        const std::unique_ptr<PassDriver> renderer = makePathPass<GpuExec>(scene, accel, settings, modes[m]);
         SamplePass pass(scene.film.width, scene.film.height, opt.spp);
         int first = 0;
         row.ms[m] = bestHostMs(std::max(1, opt.reps / 3), [&] {
-            row.rays[m] = renderer.renderPass(scene.seed, first, pass);
+            row.rays[m] = renderer->render(scene.seed, first, pass);
             first += opt.spp;
         });
     }

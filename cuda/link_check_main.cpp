@@ -2,18 +2,17 @@
 // It does not launch anything (the build machines have no GPU): it only reports what it holds.
 #include <cstdio>
 
+#include "caustica/integrators/pass_driver.h"
 #include "caustica/parallel/backend.h"
 #include "cuda/cuda_backend.h"
-#include "kernel_check.h"
 
 int main() {
-    auto path = &caustica::launchPathMegakernel;
-    auto gather = &caustica::launchFilmSplat;
+    // The GPU's instantiations of the single-source drivers (cuda/drivers.cu).
+    auto path = &caustica::makePathPass<caustica::GpuExec>;
+    auto direct = &caustica::makeDirectPass<caustica::GpuExec>;
     caustica::registerCudaBackend();  // installs function pointers only; touches no GPU
     const caustica::GpuBackend* backend = caustica::gpuBackend();
-    std::printf(
-        "caustica CUDA kernels linked: path megakernel %s, film splat %s, "
-        "primitives backend %s\n",
-        path ? "yes" : "no", gather ? "yes" : "no", backend ? backend->name : "no");
+    std::printf("caustica GPU drivers linked: path %s, direct %s, primitives backend %s\n", path ? "yes" : "no",
+                direct ? "yes" : "no", backend ? backend->name : "no");
     return backend ? 0 : 1;
 }

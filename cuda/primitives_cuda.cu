@@ -258,6 +258,10 @@ float reduceMax(const float* in, size_t n) {
     return downloadOne(result);
 }
 
+size_t peakBytes() {
+    return cudaMemoryCounters().peak;
+}
+
 const GpuBackend kCudaBackend = {
     .name = "CUDA",
     .deviceCount = &deviceCount,
@@ -273,6 +277,10 @@ const GpuBackend kCudaBackend = {
     .reduceSum = &reduceSum,
     .reduceMax = &reduceMax,
     .reduceSumU32 = &reduceSumU32,
+    .memoryInfo = &cudaMemoryInfo,
+    .peakBytes = &peakBytes,
+    .resetPeakBytes = &resetCudaPeakBytes,
+    .describe = &cudaDeviceDescription,
 };
 
 }  // namespace

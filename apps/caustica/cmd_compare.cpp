@@ -6,10 +6,22 @@
 #include "commands.h"
 #include "caustica/film/image_compare.h"
 #include "caustica/io/image_io.h"
+#include "caustica/util/error.h"
 
 namespace caustica::cli {
 
 namespace {
+/// readImage, refusing an image with NaN or infinite values: its metrics would mean nothing.
+Image readComparable(const std::string& path) {
+    Image image = readImage(path);
+    if (const NonFiniteCount bad = countNonFinite(image); bad.values > 0)
+        throw Error(path, 0,
+                    std::to_string(bad.pixels) + " of " + std::to_string(image.pixelCount()) +
+                        " pixels are not finite (" + std::to_string(bad.values) +
+                        " NaN or infinite values): cannot compare");
+    return image;
+}
+
 /// A JSON number; null for NaN and infinities, which JSON cannot hold.
 std::string jsonNumber(double v) {
     if (!std::isfinite(v)) return "null";
@@ -35,9 +47,10 @@ std::function<int()> addCompareCommand(CLI::App& app) {
                     "with the reference's own noise removed");
     cmd->add_flag("--json", opt->json, "Print the metrics as one JSON object");
     return [opt] {
-        Image a = readImage(opt->test), b = readImage(opt->reference);
+        const Image a = readComparable(opt->test), b = readComparable(opt->reference);
         const bool withVar = !opt->referenceVariance.empty();
-        const ErrorMetrics m = withVar ? compareImages(a, b, readImage(opt->referenceVariance)) : compareImages(a, b);
+        const ErrorMetrics m =
+            withVar ? compareImages(a, b, readComparable(opt->referenceVariance)) : compareImages(a, b);
         if (opt->json) {
             std::printf("{\"mse\": %s, \"rmse\": %s, \"relmse\": %s, \"mae\": %s, \"pixels\": %zu, "
                         "\"relmse_worst_1pct_share\": %s, \"mean_ratio\": %s",

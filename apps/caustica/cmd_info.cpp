@@ -4,6 +4,7 @@
 #include "commands.h"
 #include "caustica/accel/bvh.h"
 #include "caustica/io/scene_loader.h"
+#include "caustica/render/integrator_registry.h"
 
 namespace caustica::cli {
 namespace {
@@ -36,8 +37,11 @@ void printScene(const Scene& scene) {
     std::printf("film         %dx%d, %s filter (radius %g)\n", scene.film.width, scene.film.height,
                 filterName(scene.film.filter.type), scene.film.filter.radius);
     std::printf("sampler      %d spp\n", scene.sampleCount);
-    std::printf("integrator   path (max_depth %d, rr_depth %d%s)\n", scene.integrator.maxDepth,
-                scene.integrator.rrDepth, scene.integrator.hideEmitters ? ", hide_emitters" : "");
+    // The integrator that will run, with the settings it reads (its warnings too).
+    const IntegratorEntry& integrator = findIntegrator(scene.integrator.type);
+    IntegratorParams params = integratorParams(scene.integrator, integrator.name, {});
+    std::printf("integrator   %s (%s)\n", integrator.name, integrator.describe(params).c_str());
+    for (const std::string& w : params.unread()) std::printf("warning      %s\n", w.c_str());
     Vec3f eye = scene.camera.worldFromCamera.applyPoint(Vec3f(0, 0, 0));
     std::printf("camera       at (%g, %g, %g), horizontal fov %.4g deg\n", eye.x, eye.y, eye.z,
                 2 * degrees(std::atan(scene.camera.tanHalfX)));

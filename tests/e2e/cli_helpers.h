@@ -16,9 +16,8 @@ struct CliResult {
     std::string output;  // stdout and stderr
 };
 
-/// Runs `caustica ARGS` and captures its exit code and output.
-inline CliResult runCli(const std::string& args) {
-    std::string cmd = std::string(CAUSTICA_BINARY) + " " + args + " 2>&1";
+/// Runs a shell command line and captures its exit code and output.
+inline CliResult runCliCommand(const std::string& cmd) {
     CliResult r{-1, {}};
     FILE* p = popen(cmd.c_str(), "r");
     if (!p) return r;
@@ -27,6 +26,18 @@ inline CliResult runCli(const std::string& args) {
     int status = pclose(p);
     r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return r;
+}
+
+/// Runs `caustica ARGS` and captures its exit code and output.
+inline CliResult runCli(const std::string& args) {
+    return runCliCommand(std::string(CAUSTICA_BINARY) + " " + args + " 2>&1");
+}
+
+/// Runs a shell script (sh -c) and captures its exit code and output; $CAUSTICA names the binary.
+inline CliResult runShell(const std::string& script) {
+    std::string quoted;
+    for (char c : script) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return runCliCommand("CAUSTICA=" + std::string(CAUSTICA_BINARY) + " sh -c '" + quoted + "' 2>&1");
 }
 
 /// A fresh temporary directory per test, named after the test.

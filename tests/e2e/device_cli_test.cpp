@@ -78,7 +78,7 @@ TEST_F(DeviceCli, KernelStatsTableOnTheCpu) {
                        " -o " + path("k.exr"));
         ASSERT_EQ(r.exitCode, 0) << r.output;
         EXPECT_NE(r.output.find("kernel statistics (cpu)"), std::string::npos) << r.output;
-        const char* kernel = std::string(mode) == "wavefront" ? "wavefront.extend" : "path.pass";
+        const char* kernel = std::string(mode) == "wavefront" ? "wavefront.extend" : "path.megakernel";
         EXPECT_NE(r.output.find(kernel), std::string::npos) << r.output;
     }
 }

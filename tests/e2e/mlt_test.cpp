@@ -20,8 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "caustica/integrators/mlt/mlt_loop.h"
-#include "caustica/integrators/path/path_integrator.h"
+#include "caustica/integrators/path/path_settings.h"
 #include "caustica/io/image_io.h"
 #include "common/block_agreement.h"
 #include "common/mlt_reference_check.h"
@@ -31,10 +30,10 @@ namespace caustica::test {
 namespace {
 
 Image renderMlt(const Scene& scene, const Accel& accel, const MltSettings& settings, uint64_t seed, double mpp) {
-    MltRenderer mlt(scene, accel, pathSettingsFrom(scene.integrator), settings, seed);
-    MltBudget budget;
-    budget.mutationsPerPixel = mpp;
-    runMlt(mlt, budget);
+    MltRenderer mlt(scene, accel, scenePathSettings(scene), settings, seed);
+    mlt.bootstrap();
+    do mlt.iterate();
+    while (mlt.mutationsPerPixel() < mpp);
     return mlt.develop();
 }
 
@@ -53,7 +52,7 @@ struct SmallCornellBox {
         : scene(loadScene(sourcePath("scenes/cornell-box/scene.xml"),
                           {{"width", std::to_string(w)}, {"height", std::to_string(h)}})),
           accel(scene, AccelKind::Embree),
-          path(pathSettingsFrom(scene.integrator)) {
+          path(scenePathSettings(scene)) {
         settings.chains = chains;
         settings.bootstrapSamples = bootstrap;
     }
@@ -229,7 +228,7 @@ TEST(MltCheckpoint, MismatchedOrDamagedCheckpointsAreRefused) {
     };
     MltSettings more = s;
     more.chains = 32;
-    EXPECT_NE(loadInto(more, 1, bytes).find("chains 16"), std::string::npos);
+    EXPECT_NE(loadInto(more, 1, bytes).find("chains differs (written for 16; now 32)"), std::string::npos);
     EXPECT_NE(loadInto(s, 2, bytes).find("seed"), std::string::npos);
     std::string damaged = bytes;
     damaged[damaged.size() - 9] ^= 0x5a;  // inside the splat sums, before the trailing hash

@@ -10,14 +10,20 @@
 
 #include "caustica/accel/accel.h"
 #include "caustica/film/film.h"
-#include "caustica/integrators/render_loop.h"
-#include "caustica/integrators/sample_pass.h"
+#include "caustica/integrators/path/path_settings.h"
+#include "caustica/render/renderer.h"
 #include "caustica/io/scene_loader.h"
 
 namespace caustica::test {
 
 inline std::string sourcePath(const std::string& relative) {
     return std::string(CAUSTICA_SOURCE_DIR) + "/" + relative;
+}
+
+/// The path tracer's settings of a loaded scene's <integrator>.
+inline PathSettings scenePathSettings(const Scene& scene) {
+    IntegratorParams params(scene.integrator);
+    return readPathSettings(params);
 }
 
 struct RenderRequest {
@@ -28,23 +34,26 @@ struct RenderRequest {
     bool wavefront = false;  // path tracer execution: megakernel (false) or wavefront (true)
 };
 
-/// Renders a loaded scene with its integrator and returns the developed image.
+/// Renders a loaded scene with its integrator through the render session and returns the
+/// developed image.
 inline Image renderImage(const Scene& scene, const RenderRequest& request) {
-    Accel accel(scene, request.accel);
-    Film film(scene.film);
-    RenderBudget budget;
-    budget.samplesPerPixel = request.spp;
-    budget.samplesPerPass = 4;
-    auto pass = [&](int first, int, SamplePass& p) {
-        return renderSamplePass(scene, accel, scene.integrator, request.seed, first, p, request.wavefront);
+    caustica::RenderRequest r;
+    r.samplesPerPixel = request.spp;
+    r.samplesPerPass = 4;
+    r.seed = request.seed;
+    r.accel = request.accel;
+    r.device = "cpu";
+    r.pathMode = request.wavefront ? "wavefront" : "megakernel";
+    auto render = [&] {
+        Renderer renderer(scene, r);
+        while (!renderer.finished()) renderer.step();
+        return renderer.develop();
     };
     if (request.threads > 0) {
         tbb::task_arena arena(request.threads);
-        arena.execute([&] { runRenderLoop(film, budget, pass); });
-    } else {
-        runRenderLoop(film, budget, pass);
+        return arena.execute(render);
     }
-    return film.develop();
+    return render();
 }
 
 /// Per-pixel mean and variance of the mean over `runs` independent renders (seeds 1..runs), and

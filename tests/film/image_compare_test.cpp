@@ -68,6 +68,17 @@ TEST(ImageCompare, RelMseUsesTheSecondImageAsReference) {
     EXPECT_DOUBLE_EQ(compareImages(b, a).relMse, 4 / 1.01);
 }
 
+TEST(ImageCompare, CountsNonFiniteValuesAndPixels) {
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float inf = std::numeric_limits<float>::infinity();
+    const NonFiniteCount n = countNonFinite(makeImage(3, 1, {1, nan, inf, 0, 0, 0, -inf, 2, 3}));
+    EXPECT_EQ(n.values, 3u);
+    EXPECT_EQ(n.pixels, 2u);
+    const NonFiniteCount none = countNonFinite(makeImage(1, 1, {1e30f, -2, 0}));
+    EXPECT_EQ(none.values, 0u);
+    EXPECT_EQ(none.pixels, 0u);
+}
+
 TEST(ImageCompare, SizeMismatchThrows) {
     EXPECT_THROW(compareImages(Image(2, 3), Image(3, 2)), Error);
     EXPECT_THROW(falseColourError(Image(2, 3), Image(2, 2)), Error);

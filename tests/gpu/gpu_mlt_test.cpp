@@ -1,4 +1,5 @@
-// gpu_mlt_test.cpp — Metropolis light transport on the GPU (cuda/gpu_mlt.h): GPU MLT renders of
+// gpu_mlt_test.cpp — Metropolis light transport on the GPU (the one MLT driver, mlt_driver.h,
+// instantiated for the GPU): GPU MLT renders of
 // cornell-box (64x64) against the Mitsuba 3 reference the CPU driver is tested against
 // (tests/e2e/mlt_test.cpp; the checks of tests/common/mlt_reference_check.h), atomic against sort
 // splats, the statistics the driver fills, checkpoints (resumed = uninterrupted; a CPU
@@ -12,14 +13,13 @@
 #include <vector>
 
 #include "caustica/accel/accel.h"
-#include "caustica/integrators/mlt/mlt_loop.h"
-#include "caustica/integrators/path/path_integrator.h"
+#include "caustica/integrators/mlt/mlt_driver.h"
+#include "caustica/integrators/path/path_settings.h"
 #include "caustica/io/scene_loader.h"
 #include "caustica/util/error.h"
 #include "common/gpu_test_setup.h"
 #include "common/mlt_reference_check.h"
 #include "cuda/cuda_backend.h"
-#include "cuda/gpu_mlt.h"
 
 namespace caustica {
 namespace {
@@ -32,6 +32,17 @@ using test::splatComparisonScene;
 using test::splatComparisonSettings;
 using test::sourcePath;
 
+PathSettings pathSettingsOf(const Scene& scene) {
+    IntegratorParams params(scene.integrator);
+    return readPathSettings(params);
+}
+
+/// The GPU's instantiation of the MLT driver.
+std::unique_ptr<MltRenderer> makeGpuMltRenderer(const Scene& scene, const Accel& accel, const PathSettings& path,
+                                                const MltSettings& settings, uint64_t seed) {
+    return std::make_unique<MltRenderer>(makeMltDriver<GpuExec>(scene, accel, path, settings, seed));
+}
+
 class GpuMlt : public ::testing::Test {
 protected:
     void SetUp() override {
@@ -41,11 +52,10 @@ protected:
 
 Image renderGpuMlt(const Scene& scene, const Accel& accel, const MltSettings& settings, uint64_t seed,
                    double mutationsPerPixel, MltStats* stats = nullptr) {
-    const std::unique_ptr<MltRenderer> mlt =
-        makeGpuMltRenderer(scene, *accel.bvh(), pathSettingsFrom(scene.integrator), settings, seed);
-    MltBudget budget;
-    budget.mutationsPerPixel = mutationsPerPixel;
-    runMlt(*mlt, budget);
+    const std::unique_ptr<MltRenderer> mlt = makeGpuMltRenderer(scene, accel, pathSettingsOf(scene), settings, seed);
+    mlt->bootstrap();
+    do mlt->iterate();
+    while (mlt->mutationsPerPixel() < mutationsPerPixel);
     if (stats) *stats = mlt->stats();
     return mlt->develop();
 }
@@ -95,7 +105,7 @@ TEST_F(GpuMlt, StatisticsAreFilled) {
     s.bootstrapSamples = 4096;
     MltStats st;
     renderGpuMlt(scene, accel, s, 5, 8, &st);
-    const PathSettings path = pathSettingsFrom(scene.integrator);
+    const PathSettings path = pathSettingsOf(scene);
     EXPECT_EQ(st.bytesPerChain, mltBytesPerChain(MltStateKind::Compact, mltStoredBounces(path)));
     EXPECT_EQ(st.stateBytes, st.bytesPerChain * s.chains);
     EXPECT_EQ(st.bootstrapSamples, 4096u);
@@ -123,7 +133,7 @@ MltSettings checkpointSettings() {
 /// `developEachStep`, which must change nothing).
 std::unique_ptr<MltRenderer> gpuRendered(const Scene& scene, const Accel& accel, const MltSettings& s, int iterations,
                                          bool developEachStep = false) {
-    std::unique_ptr<MltRenderer> mlt = makeGpuMltRenderer(scene, *accel.bvh(), pathSettingsFrom(scene.integrator), s, 5);
+    std::unique_ptr<MltRenderer> mlt = makeGpuMltRenderer(scene, accel, pathSettingsOf(scene), s, 5);
     mlt->bootstrap();
     for (int i = 0; i < iterations; ++i) {
         mlt->iterate();
@@ -138,11 +148,11 @@ TEST_F(GpuMlt, ASavedAndResumedRenderEqualsAnUninterruptedOne) {
     const Scene scene = loadScene(sourcePath("scenes/cornell-box/scene.xml"), {{"width", "16"}, {"height", "12"}});
     const Accel accel(scene, AccelKind::Bvh);
     const MltSettings s = checkpointSettings();
-    const PathSettings path = pathSettingsFrom(scene.integrator);
+    const PathSettings path = pathSettingsOf(scene);
     const std::unique_ptr<MltRenderer> whole = gpuRendered(scene, accel, s, 8);
     std::stringstream file;
     gpuRendered(scene, accel, s, 3)->save(file);
-    const std::unique_ptr<MltRenderer> resumed = makeGpuMltRenderer(scene, *accel.bvh(), path, s, 5);
+    const std::unique_ptr<MltRenderer> resumed = makeGpuMltRenderer(scene, accel, path, s, 5);
     EXPECT_FALSE(resumed->started());
     resumed->load(file);
     EXPECT_TRUE(resumed->started());
@@ -162,11 +172,11 @@ TEST_F(GpuMlt, UnfinishedSplatBatchesAreResumedAndDeveloped) {
     const Accel accel(scene, AccelKind::Bvh);
     MltSettings s = checkpointSettings();
     s.splatBatch = 3;
-    const PathSettings path = pathSettingsFrom(scene.integrator);
+    const PathSettings path = pathSettingsOf(scene);
     const std::unique_ptr<MltRenderer> whole = gpuRendered(scene, accel, s, 7);
     std::stringstream file;
     gpuRendered(scene, accel, s, 4, true)->save(file);
-    const std::unique_ptr<MltRenderer> resumed = makeGpuMltRenderer(scene, *accel.bvh(), path, s, 5);
+    const std::unique_ptr<MltRenderer> resumed = makeGpuMltRenderer(scene, accel, path, s, 5);
     resumed->load(file);
     for (int i = 0; i < 3; ++i) resumed->iterate();
     EXPECT_EQ(resumed->develop().rgb, whole->develop().rgb);
@@ -176,7 +186,7 @@ TEST_F(GpuMlt, UnfinishedSplatBatchesAreResumedAndDeveloped) {
     for (int i = 0; i < 4; ++i) cpu.iterate();
     std::stringstream cpuFile;
     cpu.save(cpuFile);
-    const std::unique_ptr<MltRenderer> gpu = makeGpuMltRenderer(scene, *accel.bvh(), path, s, 5);
+    const std::unique_ptr<MltRenderer> gpu = makeGpuMltRenderer(scene, accel, path, s, 5);
     std::stringstream in(cpuFile.str());
     gpu->load(in);
     EXPECT_LT(maxRelativeDifference(gpu->develop(), cpu.develop()), 1e-5);
@@ -188,14 +198,14 @@ TEST_F(GpuMlt, ACpuCheckpointResumesOnTheGpu) {
     const Scene scene = loadScene(sourcePath("scenes/cornell-box/scene.xml"), {{"width", "16"}, {"height", "12"}});
     const Accel accel(scene, AccelKind::Bvh);
     const MltSettings s = checkpointSettings();
-    const PathSettings path = pathSettingsFrom(scene.integrator);
+    const PathSettings path = pathSettingsOf(scene);
     MltRenderer cpu(scene, accel, path, s, 5);
     cpu.bootstrap();
     for (int i = 0; i < 3; ++i) cpu.iterate();
     std::stringstream cpuFile;
     cpu.save(cpuFile);
 
-    const std::unique_ptr<MltRenderer> gpu = makeGpuMltRenderer(scene, *accel.bvh(), path, s, 5);
+    const std::unique_ptr<MltRenderer> gpu = makeGpuMltRenderer(scene, accel, path, s, 5);
     std::stringstream in(cpuFile.str());
     gpu->load(in);
     EXPECT_EQ(gpu->develop().rgb, cpu.develop().rgb);
@@ -215,7 +225,7 @@ TEST_F(GpuMlt, ARenderThatDoesNotFitIsRefusedWithOneLine) {
     MltSettings s = smallMltSettings();
     s.bootstrapSamples = uint64_t(1) << 36;
     try {
-        makeGpuMltRenderer(scene, *accel.bvh(), pathSettingsFrom(scene.integrator), s, 1);
+        makeGpuMltRenderer(scene, accel, pathSettingsOf(scene), s, 1);
         FAIL() << "no exception";
     } catch (const Error& e) {
         const std::string what = e.what();
@@ -232,7 +242,7 @@ TEST(GpuMltSettings, FloatStateIsRefusedBeforeTouchingTheGpu) {
     MltSettings s = smallMltSettings();
     s.state = MltStateKind::Float;
     try {
-        makeGpuMltRenderer(scene, *accel.bvh(), pathSettingsFrom(scene.integrator), s, 1);
+        makeGpuMltRenderer(scene, accel, pathSettingsOf(scene), s, 1);
         FAIL() << "no exception";
     } catch (const Error& e) {
         const std::string what = e.what();
@@ -246,7 +256,7 @@ TEST(GpuMltWithoutGpu, ConstructionFailsWithAnError) {
     if (cudaDeviceCountOrZero() > 0) GTEST_SKIP() << "a GPU is present";
     const Scene scene = loadScene(sourcePath("scenes/cornell-box/scene.xml"), {{"width", "8"}, {"height", "8"}});
     const Accel accel(scene, AccelKind::Bvh);
-    EXPECT_THROW(makeGpuMltRenderer(scene, *accel.bvh(), pathSettingsFrom(scene.integrator), smallMltSettings(), 1),
+    EXPECT_THROW(makeGpuMltRenderer(scene, accel, pathSettingsOf(scene), smallMltSettings(), 1),
                  Error);
 }
 

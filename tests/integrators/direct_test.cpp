@@ -14,8 +14,7 @@
 #include <vector>
 
 #include "caustica/accel/accel.h"
-#include "caustica/integrators/direct/direct_integrator.h"
-#include "caustica/integrators/sample_pass.h"
+#include "caustica/integrators/pass_driver.h"
 #include "caustica/scene/bsdf.h"
 #include "caustica/util/error.h"
 #include "scene/scene_builder.h"
@@ -69,20 +68,26 @@ Scene makeScene(int size, bool pointLight, bool onlyPointLight = false, bool smo
     return scene;
 }
 
-IntegratorDesc direct(int emitterSamples, int bsdfSamples, bool hide = false) {
-    IntegratorDesc d;
-    d.type = IntegratorType::Direct;
-    d.emitterSamples = emitterSamples;
-    d.bsdfSamples = bsdfSamples;
-    d.hideEmitters = hide;
+/// The integrator a pass runs: direct or path, with its settings.
+struct Integrator {
+    bool isDirect = true;
+    DirectSettings direct;
+    PathSettings path;
+};
+
+Integrator direct(int emitterSamples, int bsdfSamples, bool hide = false) {
+    Integrator d;
+    d.direct.emitterSamples = emitterSamples;
+    d.direct.bsdfSamples = bsdfSamples;
+    d.direct.hideEmitters = hide;
     return d;
 }
 
-IntegratorDesc path(int maxDepth, bool hide = false) {
-    IntegratorDesc d;
-    d.type = IntegratorType::Path;
-    d.maxDepth = maxDepth;
-    d.hideEmitters = hide;
+Integrator path(int maxDepth, bool hide = false) {
+    Integrator d;
+    d.isDirect = false;
+    d.path.maxDepth = maxDepth;
+    d.path.hideEmitters = hide;
     return d;
 }
 
@@ -91,10 +96,11 @@ struct Pass {
     uint64_t rays = 0;
 };
 
-Pass render(const Scene& scene, const Accel& accel, const IntegratorDesc& desc, int spp,
+Pass render(const Scene& scene, const Accel& accel, const Integrator& integrator, int spp,
             uint64_t seed) {
     Pass p{SamplePass(scene.film.width, scene.film.height, spp), 0};
-    p.rays = renderSamplePass(scene, accel, desc, seed, 0, p.samples);
+    p.rays = integrator.isDirect ? makeDirectPass<CpuExec>(scene, accel, integrator.direct)->render(seed, 0, p.samples)
+                                 : makePathPass<CpuExec>(scene, accel, integrator.path, PathMode::Megakernel)->render(seed, 0, p.samples);
     return p;
 }
 
@@ -240,9 +246,6 @@ TEST(Direct, RaysPerSampleAndSettings) {
     const Pass p = render(scene, accel, direct(2, 3), 2, 5);
     EXPECT_GT(p.rays, uint64_t(8 * 8 * 2));  // at least one camera ray per sample
     EXPECT_LE(p.rays, uint64_t(8 * 8 * 2 * (1 + 2 + 3)));
-    IntegratorDesc none = direct(0, 0);
-    EXPECT_THROW(directSettingsFrom(none), Error);
-    EXPECT_TRUE(rendersBySamplePasses(IntegratorType::Direct));
 }
 
 }  // namespace

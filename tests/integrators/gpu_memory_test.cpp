@@ -5,7 +5,7 @@
 #include "caustica/accel/bvh.h"
 #include "caustica/film/film.h"
 #include "caustica/integrators/path/gpu_memory.h"
-#include "caustica/integrators/path/wavefront.h"
+#include "caustica/integrators/pass_driver.h"
 #include "caustica/scene/scene.h"
 #include "caustica/util/error.h"
 
@@ -52,7 +52,7 @@ TEST(GpuMemory, MegakernelHasOnePathPerSample) {
 
 TEST(GpuMemory, WavefrontIsBoundedByPathsInFlight) {
     GpuRenderSizes s = someSizes();
-    s.mode = GpuPathMode::Wavefront;
+    s.mode = PathMode::Wavefront;
     s.maxPathsInFlight = 1000;
     const GpuMemoryEstimate small = estimateGpuMemory(s);
     EXPECT_EQ(small.pathsInFlight, 1000u);
@@ -83,7 +83,7 @@ TEST(GpuMemory, SizesComeFromTheScene) {
     Bvh bvh;
     bvh.nodes.resize(1);
     bvh.primIndices.resize(1);
-    const GpuRenderSizes s = gpuRenderSizes(scene, bvh, 3, GpuPathMode::Wavefront, 7);
+    const GpuRenderSizes s = gpuRenderSizes(scene, bvh, 3, PathMode::Wavefront, 7);
     EXPECT_EQ(s.positions, 3u);
     EXPECT_EQ(s.triangles, 1u);
     EXPECT_EQ(s.bvhNodes, 1u);
@@ -100,16 +100,16 @@ TEST(GpuMemory, BvhShareIsEveryUploadedArray) {
     const Scene scene = test::makeRandomScene(test::sceneOf(500, 20, 5));
     const Bvh bvh = buildBvh(scene);
     ASSERT_FALSE(bvh.parents.empty());
-    const GpuRenderSizes s = gpuRenderSizes(scene, bvh, 1, GpuPathMode::Megakernel);
+    const GpuRenderSizes s = gpuRenderSizes(scene, bvh, 1, PathMode::Megakernel);
     EXPECT_EQ(s.bvhParents, bvh.parents.size());
     EXPECT_EQ(estimateGpuMemory(s).bvh, bvh.stats.memoryBytes);
 }
 
 TEST(GpuMemory, ModeNamesAndBytes) {
-    EXPECT_EQ(parseGpuPathMode("wavefront"), GpuPathMode::Wavefront);
-    EXPECT_EQ(parseGpuPathMode("megakernel"), GpuPathMode::Megakernel);
-    EXPECT_THROW(parseGpuPathMode("fast"), Error);
-    EXPECT_STREQ(gpuPathModeName(GpuPathMode::Wavefront), "wavefront");
+    EXPECT_EQ(parsePathMode("wavefront"), PathMode::Wavefront);
+    EXPECT_EQ(parsePathMode("megakernel"), PathMode::Megakernel);
+    EXPECT_THROW(parsePathMode("fast"), Error);
+    EXPECT_STREQ(pathModeName(PathMode::Wavefront), "wavefront");
     EXPECT_EQ(formatBytes(512), "512 B");
     EXPECT_EQ(formatBytes(size_t(3) << 20), "3.0 MiB");
     EXPECT_EQ(formatBytes(size_t(3) << 29), "1.50 GiB");

@@ -112,10 +112,9 @@ TEST(MltCheckpointFile, RefusesOtherSettingsSizesAndDamageByName) {
     const MltCheckpoint c = someCheckpoint();
     const std::string bytes = written(c);
     MltCheckpointKeys other = kKeys;
-    other[2].second = 3;
+    other[2].value = 3;
     const std::string chains = readError(bytes, other, sizesOf(c));
-    EXPECT_NE(chains.find("rendered with chains 2, this render has 3"), std::string::npos)
-        << chains;
+    EXPECT_NE(chains.find("chains differs (written for 2; now 3)"), std::string::npos) << chains;
     MltCheckpointSizes sizes = sizesOf(c);
     sizes.pixelWeights = 0;  // a luminance-target render
     EXPECT_NE(readError(bytes, kKeys, sizes).find("pixel weights holds 4 values, expected 0"),
@@ -132,6 +131,41 @@ TEST(MltCheckpointFile, RefusesOtherSettingsSizesAndDamageByName) {
     EXPECT_NE(readError("CAMLTCK0 and more bytes", kKeys, sizesOf(c)).find("bad magic"),
               std::string::npos);
     EXPECT_EQ(readError(bytes, kKeys, sizesOf(c)), "");
+}
+
+// A mismatch prints the settings as a user gives them: floats in their shortest form (not their
+// bits), signed depths, names for kinds and filters.
+TEST(MltCheckpointFile, MismatchesPrintValuesNotBits) {
+    const MltCheckpoint c = someCheckpoint();
+    MltStepParams params;
+    params.width = params.height = 2;
+    MltSettings settings;
+    settings.chains = 2;
+    settings.largeStepProbability = 0.3f;
+    const Filter gaussian = Filter::fromDesc(FilterDesc{});
+    const std::string bytes = written(c, mltCheckpointKeys(params, settings, 8, gaussian));
+    // The error reading `bytes` as a checkpoint of a render with these settings holds `text`.
+    auto expectMismatch = [&](const MltStepParams& p, const MltSettings& s, const Filter& f,
+                              const std::string& text) {
+        const std::string error = readError(bytes, mltCheckpointKeys(p, s, 8, f), sizesOf(c));
+        EXPECT_NE(error.find(text), std::string::npos) << error;
+    };
+    EXPECT_EQ(readError(bytes, mltCheckpointKeys(params, settings, 8, gaussian), sizesOf(c)), "");
+    MltSettings other = settings;
+    other.largeStepProbability = 0.1f;
+    expectMismatch(params, other, gaussian,
+                   "MLT checkpoint: large-step probability differs (written for 0.3; now 0.1)");
+    other = settings;
+    other.mutation.s1 = 0.002f;
+    expectMismatch(params, other, gaussian, "s1 differs (written for 0.0009765625; now 0.002)");
+    other = settings;
+    other.state = MltStateKind::Float;
+    expectMismatch(params, other, gaussian, "chain state differs (written for compact; now float)");
+    MltStepParams bounded = params;
+    bounded.path.maxDepth = 8;
+    expectMismatch(bounded, settings, gaussian, "max depth differs (written for -1; now 8)");
+    expectMismatch(params, settings, Filter::box(),
+                   "filter differs (written for gaussian of radius 2; now box of radius 0.5)");
 }
 
 // A setting read from the header of a file that checks out, and nothing from one that does not.

@@ -11,8 +11,7 @@
 #include <vector>
 
 #include "caustica/accel/accel.h"
-#include "caustica/integrators/path/path_integrator.h"
-#include "caustica/integrators/path/wavefront.h"
+#include "caustica/integrators/pass_driver.h"
 #include "scene/scene_builder.h"
 
 namespace caustica::test {
@@ -66,8 +65,9 @@ PassResult render(const Scene& scene, const Accel& accel, const PathSettings& se
     SamplePass pass(scene.film.width, scene.film.height, 3);
     PassResult r;
     auto run = [&] {
-        r.rays = wavefront ? renderPathPassWavefront(scene, accel, settings, 17, 5, pass, chunk)
-                           : renderPathPass(scene, accel, settings, 17, 5, pass);
+        const auto driver = makePathPass<CpuExec>(scene, accel, settings,
+                                         wavefront ? PathMode::Wavefront : PathMode::Megakernel, chunk);
+        r.rays = driver->render(17, 5, pass);
     };
     if (threads > 0) {
         tbb::task_arena(threads).execute(run);

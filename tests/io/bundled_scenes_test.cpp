@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "caustica/io/scene_loader.h"
+#include "scene_test_util.h"
 
 namespace caustica {
 namespace {
@@ -41,7 +42,7 @@ TEST(BundledScenes, CornellBoxLoadsLikeMitsuba) {
     EXPECT_EQ(s.film.height, 256);
     EXPECT_EQ(s.film.filter.type, FilterType::Box);
     EXPECT_EQ(s.sampleCount, 64);
-    EXPECT_EQ(s.integrator.maxDepth, -1);
+    EXPECT_EQ(test::integratorParam(s, "max_depth"), "-1");
     EXPECT_NEAR(s.camera.tanHalfX, std::tan(0.5 * 39.3077 * M_PI / 180), 1e-6);
     EXPECT_EQ(s.sourceFile, CAUSTICA_SOURCE_DIR "/scenes/cornell-box/scene.xml");
 }

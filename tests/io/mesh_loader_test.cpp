@@ -1,5 +1,9 @@
 // mesh_loader_test.cpp — OBJ and PLY loaders on their own: polygons, indices, attributes, the
 // three PLY encodings (ascii and both byte orders, written here), and malformed files.
+#include <sys/resource.h>
+
+#include <cstring>
+
 #include "caustica/io/mesh/obj_loader.h"
 #include "caustica/io/mesh/ply_loader.h"
 #include "ply_writer.h"
@@ -83,6 +87,64 @@ TEST(ObjLoader, Errors) {
     expectError([&] { loadObj(dir.path("folder.obj")); }, "folder.obj", 0, "it is a directory");
     expectError([&] { loadObj(dir.path("missing.obj")); }, "missing.obj", 0,
                 "cannot open mesh file");
+}
+
+// The text pre-check and tinyobjloader read lines differently (here: the pre-check drops the
+// "#t ..." comment inside a face line, tinyobj reads "2/1 3/1 4/1" as three more corners), so
+// tinyobj returned texture coordinate index 0 of none: loadObj read attrib.texcoords out of range
+// (SIGSEGV; found by fuzz_obj, fuzz/corpus/obj/texcoord_index_behind_comment.obj).
+TEST(ObjLoader, FuzzFindingIndexThePreCheckDidNotSee) {
+    TempDir dir;
+    const char* const fuzzed = R"(v 0 0 0 1
+v 1 0 0
+v 0 1 0
+v 1 0 1
+vt[ 0.5 0.5
+vn 0 0 1
+f 1//1 2//1  3//1#t 2/1 3/1 4/1
+g` grp
+s3//1
+t 2/1 3/1 4/1
+g grp
+ 1
+l 1& 
+3
+f 1 2 1 2
+p 12 
+3 f3 4
+)";
+    ASSERT_EQ(std::strlen(fuzzed), 154u);
+    std::string path = dir.write("fuzzed.obj", fuzzed);
+    expectError([&] { loadObj(path); }, "fuzzed.obj", 0,
+                "face 1, corner 4: texture coordinate index 1 is out of range (the file has 0)");
+    // The same disagreement for the other index kinds: every index is checked against what
+    // tinyobj returned (the pre-check sees 3 corners, tinyobj 4).
+    const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\n";
+    path = dir.write("v.obj", tri + "f 1 2 3#x 4\n");
+    expectError([&] { loadObj(path); }, "v.obj", 0,
+                "face 1, corner 4: vertex index 4 is out of range (the file has 3)");
+    path = dir.write("vn.obj", tri + "g part\nf 1//1 2//1 3//1#x 1//2\n");
+    expectError([&] { loadObj(path); }, "vn.obj", 0,
+                "face 1 (group 'part'), corner 4: normal index 2 is out of range (the file has 1)");
+}
+
+// tinyobjloader reads each tag line "t name ints/reals/strings" into up to 3 x 8192 values and
+// copies all the tags into every shape: 3000 such lines (60 KB) took over 2 GB, out of memory under
+// fuzz_obj's limit. caustica uses no tags and hides them from tinyobj, so they cost nothing.
+TEST(ObjLoader, TagLinesCostNoMemory) {
+    auto peakRssKb = [] {
+        rusage u{};
+        getrusage(RUSAGE_SELF, &u);
+        return long(u.ru_maxrss);  // kilobytes on Linux
+    };
+    TempDir dir;
+    std::string text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    for (int i = 0; i < 1000; ++i)  // tinyobj also ends a line at '\r' and skips leading blanks
+        text += i % 2 ? "t a 8192/8192/8192\n" : " \tt\tb 8192/8192/8192\r";
+    const std::string path = dir.write("tags.obj", text);
+    const long before = peakRssKb();
+    EXPECT_EQ(loadObj(path).triangles.size(), 1u);
+    EXPECT_LT(peakRssKb() - before, 128 * 1024) << "loading grew the peak RSS by over 128 MB";
 }
 
 // ---- PLY ------------------------------------------------------------------------------------

@@ -56,6 +56,19 @@ TEST(Robustness, DamagedPly) {
                [](const std::string& p) { meshio::loadPly(p); });
 }
 
+// Cut anywhere inside the header, on a line boundary or not, a PLY file is refused as truncated.
+TEST(Robustness, PlyCutInsideItsHeaderSaysTruncated) {
+    TempDir dir;
+    const std::string ply = squarePly(PlyWriter::Little);
+    const size_t headerEnd = ply.find("end_header") + std::string("end_header").size();
+    for (size_t n = std::string("ply").size(); n < headerEnd; ++n) {
+        SCOPED_TRACE("cut at " + std::to_string(n));
+        const std::string path = dir.write("cut.ply", ply.substr(0, n));
+        expectError([&] { meshio::loadPly(path); }, "cut.ply", 0,
+                    "PLY header truncated: no 'end_header' before the end of the file");
+    }
+}
+
 TEST(Robustness, DamagedObj) {
     TempDir dir;
     const std::string obj =

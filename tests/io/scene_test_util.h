@@ -32,6 +32,13 @@ inline std::string readBytes(const std::string& path) {
 }
 
 /// A fresh directory under the system temp dir, removed when the object dies.
+/// The text of the scene's <integrator> parameter `name` as io/ keeps it ("" when not given).
+inline std::string integratorParam(const Scene& scene, const std::string& name) {
+    for (const IntegratorParam& p : scene.integrator.params)
+        if (p.name == name) return p.text;
+    return {};
+}
+
 class TempDir {
 public:
     TempDir() {

@@ -26,8 +26,8 @@ TEST(XmlParser, PropertyTypesAreParsed) {
     EXPECT_EQ(s.lights[1].position, Vec3f(4, 5, 6));
     // A single-value spectrum in an emitter is equal-energy white: 2 * xyz_to_srgb(1, 1, 1).
     EXPECT_NEAR(s.lights[1].radiance.b, 1.81783f, 1e-4f);
-    EXPECT_EQ(s.integrator.maxDepth, 7);
-    EXPECT_TRUE(s.integrator.hideEmitters);
+    EXPECT_EQ(integratorParam(s, "max_depth"), "7");
+    EXPECT_EQ(integratorParam(s, "hide_emitters"), "true");
 }
 
 TEST(XmlParser, DefaultsAndDefinesSubstituteAnyAttribute) {
@@ -47,12 +47,12 @@ TEST(XmlParser, DefaultsAndDefinesSubstituteAnyAttribute) {
     full.insert(full.find("</scene>"), sensor);
     Scene a = loadXml(dir, full);
     EXPECT_EQ(a.sampleCount, 16);
-    EXPECT_EQ(a.integrator.maxDepth, 3);
-    EXPECT_EQ(a.integrator.rrDepth, 13);
+    EXPECT_EQ(integratorParam(a, "max_depth"), "3");
+    EXPECT_EQ(integratorParam(a, "rr_depth"), "13");
     Scene b = loadXml(dir, full, nullptr, {{"spp", "64"}, {"depth", "5"}});
     EXPECT_EQ(b.sampleCount, 64);
-    EXPECT_EQ(b.integrator.maxDepth, 5);
-    EXPECT_EQ(b.integrator.rrDepth, 15);
+    EXPECT_EQ(integratorParam(b, "max_depth"), "5");
+    EXPECT_EQ(integratorParam(b, "rr_depth"), "15");
 }
 
 TEST(XmlParser, UndefinedParameterIsAnError) {
@@ -91,7 +91,18 @@ TEST(XmlParser, IncludeCycleIsDetected) {
     dir.write("a.xml", "<scene version=\"3.0.0\">\n<include filename=\"b.xml\"/>\n</scene>\n");
     dir.write("b.xml", "<scene version=\"3.0.0\">\n\n<include filename=\"a.xml\"/>\n</scene>\n");
     std::string path = dir.write("scene.xml", sceneXml("<include filename=\"a.xml\"/>"));
-    expectError([&] { loadScene(path); }, "b.xml", 3, "include cycle");
+    expectError([&] { loadScene(path); }, "b.xml", 3, "include cycle: a.xml -> b.xml -> a.xml");
+    // Through a subfolder, and a file including itself.
+    auto including = [](const std::string& file) {
+        return "<scene version=\"3.0.0\">\n<include filename=\"" + file + "\"/>\n</scene>\n";
+    };
+    dir.write("parts/c.xml", including("../d.xml"));
+    dir.write("d.xml", including("parts/c.xml"));
+    dir.write("self.xml", including("self.xml"));
+    expectError([&] { loadScene(dir.path("d.xml")); }, "c.xml", 2,
+                "include cycle: d.xml -> parts/c.xml -> d.xml");
+    expectError([&] { loadScene(dir.path("self.xml")); }, "self.xml", 2,
+                "include cycle: self.xml -> self.xml");
 }
 
 TEST(XmlParser, ReferencesShareOneRecordAndMayPointToNestedObjects) {

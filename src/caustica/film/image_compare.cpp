@@ -94,6 +94,17 @@ ErrorMetrics compareImages(const Image& test, const Image& reference, const Imag
     return m;
 }
 
+NonFiniteCount countNonFinite(const Image& image) {
+    NonFiniteCount count;
+    for (size_t i = 0; i < image.pixelCount(); ++i) {
+        size_t bad = 0;
+        for (size_t c = 0; c < 3; ++c) bad += !std::isfinite(image.rgb[3 * i + c]);
+        count.values += bad;
+        count.pixels += bad > 0;
+    }
+    return count;
+}
+
 Image falseColourError(const Image& test, const Image& reference, double scale) {
     checkSameSize(test, reference);
     const size_t n = test.pixelCount();

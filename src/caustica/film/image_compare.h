@@ -39,6 +39,12 @@ ErrorMetrics compareImages(const Image& test, const Image& reference);
 /// The same, also filling the *RefNoiseRemoved metrics from the reference's variance image.
 ErrorMetrics compareImages(const Image& test, const Image& reference, const Image& referenceVariance);
 
+/// How much of an image is NaN or infinite: `values` channels in `pixels` pixels.
+struct NonFiniteCount {
+    size_t values = 0, pixels = 0;
+};
+NonFiniteCount countNonFinite(const Image& image);
+
 /// Per-pixel relative squared error (the relMse term averaged over the 3 channels) mapped to
 /// viridis, in linear RGB (ready for writeImage's sRGB PNG). `scale` is the error shown as the
 /// top of the colormap; 0 (or negative) chooses the 99th percentile of the per-pixel errors (their

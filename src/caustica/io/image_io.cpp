@@ -6,8 +6,10 @@
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfMultiPartInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfStringAttribute.h>
+#include <OpenEXR/ImfTiledInputFile.h>
 #include <stb_image.h>
 #include <stb_image_write.h>
 
@@ -77,6 +79,10 @@ uint32_t readBe32(const unsigned char* p) {
     return uint32_t(p[0]) << 24 | uint32_t(p[1]) << 16 | uint32_t(p[2]) << 8 | uint32_t(p[3]);
 }
 
+uint32_t readLe32(const unsigned char* p) {
+    return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
+}
+
 void appendBe32(Bytes& out, uint32_t v) {
     for (int s = 24; s >= 0; s -= 8) out.push_back(static_cast<unsigned char>(v >> s));
 }
@@ -122,10 +128,17 @@ int64_t exrFixedAttributeSize(const std::string& type) {
     return -1;
 }
 
+/// Where an EXR file's header(s) end (its first chunk offset table starts there), and whether
+/// it is a multi-part file.
+struct ExrLayout {
+    uint64_t headerEnd = 0;
+    bool multipart = false;
+};
+
 /// Walks the EXR header(s) before OpenEXR sees the file: OpenEXR allocates an attribute's value
 /// with the size the file claims before reading it, so a few bytes claiming a 2 GB attribute
 /// would cost 2 GB. Refuses attributes larger than what is left of the file (found by fuzzing).
-void checkExrHeader(const std::string& path) {
+ExrLayout checkExrHeader(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error(path, 0, "cannot open file for reading (missing or unreadable)");
     std::error_code ec;
@@ -151,14 +164,13 @@ void checkExrHeader(const std::string& path) {
         readName(name);
         if (name.empty()) {
             if (firstHeader) throw Error(path, 0, "corrupt header: empty header");
-            return;  // the empty header ending a multi-part file's list of headers
+            return {uint64_t(in.tellg()), true};  // the empty header ending a multi-part list
         }
         for (; !name.empty(); readName(name)) {
             readName(type);
             unsigned char sz[4];
             if (!in.read(reinterpret_cast<char*>(sz), 4)) throw Error(path, 0, "truncated header");
-            const int32_t size = int32_t(uint32_t(sz[0]) | uint32_t(sz[1]) << 8 |
-                                         uint32_t(sz[2]) << 16 | uint32_t(sz[3]) << 24);
+            const int32_t size = int32_t(readLe32(sz));
             const uint64_t pos = uint64_t(in.tellg());
             if (size < 0 || uint64_t(size) > fileSize - std::min(pos, fileSize))
                 throw Error(path, 0,
@@ -175,8 +187,7 @@ void checkExrHeader(const std::string& path) {
             auto readU32 = [&] {
                 unsigned char b[4];
                 if (!in.read(reinterpret_cast<char*>(b), 4)) throw Error(path, 0, "truncated header");
-                return uint32_t(b[0]) | uint32_t(b[1]) << 8 | uint32_t(b[2]) << 16 |
-                       uint32_t(b[3]) << 24;
+                return readLe32(b);
             };
             auto refuse = [&] {
                 throw Error(path, 0, "corrupt header: attribute '" + name + "' (" + type +
@@ -200,13 +211,108 @@ void checkExrHeader(const std::string& path) {
             const int64_t fixed = exrFixedAttributeSize(type);
             in.seekg(fixed >= 0 ? fixed : size, std::ios::cur);
         }
-        if (!multipart) return;
+        if (!multipart) return {uint64_t(in.tellg()), false};
     }
+}
+
+/// Chunks (blocks of scan lines, or tiles) in the offset table of the part `header` describes.
+uint64_t exrChunkCount(const std::string& path, const Imf::Header& header) {
+    if (header.hasChunkCount()) return uint64_t(std::max(header.chunkCount(), 0));
+    if (header.hasTileDescription()) {
+        Imf::TiledInputFile tiled(path.c_str());
+        uint64_t n = 0;  // mip-map levels are (l, l), rip-map levels every (lx, ly)
+        for (int ly = 0; ly < tiled.numYLevels(); ++ly)
+            for (int lx = 0; lx < tiled.numXLevels(); ++lx)
+                if (lx == ly || tiled.levelMode() == Imf::RIPMAP_LEVELS)
+                    n += uint64_t(tiled.numXTiles(lx)) * uint64_t(tiled.numYTiles(ly));
+        return n;
+    }
+    uint64_t lines = 1;  // scan lines per chunk
+    switch (header.compression()) {
+        case Imf::ZIP_COMPRESSION:
+        case Imf::PXR24_COMPRESSION:
+            lines = 16;
+            break;
+        case Imf::PIZ_COMPRESSION:
+        case Imf::B44_COMPRESSION:
+        case Imf::B44A_COMPRESSION:
+        case Imf::DWAA_COMPRESSION:
+            lines = 32;
+            break;
+        case Imf::DWAB_COMPRESSION:
+            lines = 256;
+            break;
+        default:
+            break;
+    }
+    const Imath::Box2i dw = header.dataWindow();
+    return (uint64_t(int64_t(dw.max.y) - dw.min.y + 1) + lines - 1) / lines;
+}
+
+/// Refuses an EXR file whose chunks do not all lie within the file (`parts`: the header of each
+/// part, in order). OpenEXR 3.1 throws when it reads past the end, but not every version does:
+/// some fill what is missing of a file cut short (uncompressed, say) with zeros without a word.
+/// Parts holding deep data are not followed (readImage refuses them).
+void checkExrChunks(const std::string& path, const std::vector<Imf::Header>& parts,
+                    const ExrLayout& layout) {
+    const uint64_t fileSize = std::filesystem::file_size(path);
+    std::vector<uint64_t> counts;  // the parts' offset tables follow one another
+    uint64_t total = 0;
+    for (const Imf::Header& header : parts) {
+        counts.push_back(exrChunkCount(path, header));
+        total += counts.back();
+        if (total > fileSize / 8) break;
+    }
+    const uint64_t tableEnd = layout.headerEnd + 8 * total;
+    if (total > fileSize / 8 || tableEnd > fileSize)
+        throw Error(path, 0, "truncated data: the file ends inside its table of chunk offsets");
+    std::ifstream in(path, std::ios::binary);
+    std::vector<unsigned char> table(8 * total);
+    in.seekg(std::streamoff(layout.headerEnd));
+    if (!in.read(reinterpret_cast<char*>(table.data()), std::streamsize(table.size())))
+        throw Error(path, 0, "read error");
+    const unsigned char* next = table.data();
+    for (size_t p = 0; p < parts.size(); ++p) {
+        const Imf::Header& header = parts[p];
+        const bool deep = header.hasType() && header.type().rfind("deep", 0) == 0;
+        // A chunk: [part number], y or 4 tile coordinates, data size (4 bytes each), data.
+        const uint64_t prefix = (layout.multipart ? 4 : 0) + (header.hasTileDescription() ? 20 : 8);
+        for (uint64_t i = 0; i < counts[p]; ++i, next += 8) {
+            const uint64_t offset = uint64_t(readLe32(next)) | uint64_t(readLe32(next + 4)) << 32;
+            if (deep) continue;
+            const std::string chunk = "chunk " + std::to_string(i) + " of " +
+                                      std::to_string(counts[p]) +
+                                      (layout.multipart ? " in part " + std::to_string(p) : "");
+            const std::string file = "the file has " + std::to_string(fileSize) + " bytes";
+            if (offset < tableEnd || offset > fileSize || fileSize - offset < prefix)
+                throw Error(path, 0,
+                            "truncated or incomplete data: " + chunk + " is missing (offset " +
+                                std::to_string(offset) + ", " + file + ")");
+            unsigned char size[4];
+            in.seekg(std::streamoff(offset + prefix - 4));
+            if (!in.read(reinterpret_cast<char*>(size), 4)) throw Error(path, 0, "read error");
+            const uint64_t end = offset + prefix + readLe32(size);
+            if (int32_t(readLe32(size)) < 0 || end > fileSize)
+                throw Error(path, 0,
+                            "truncated data: " + chunk + " ends at byte " + std::to_string(end) +
+                                ", past the end of the file (" + file + ")");
+        }
+    }
+}
+
+/// The header of each part of an EXR file (`file`'s alone when it has one part).
+std::vector<Imf::Header> exrPartHeaders(const std::string& path, const Imf::InputFile& file,
+                                        const ExrLayout& layout) {
+    if (!layout.multipart) return {file.header()};
+    Imf::MultiPartInputFile multipart(path.c_str());
+    std::vector<Imf::Header> headers;
+    for (int i = 0; i < multipart.parts(); ++i) headers.push_back(multipart.header(i));
+    return headers;
 }
 
 Image readExr(const std::string& path) {
     requireReadable(path);
-    checkExrHeader(path);
+    const ExrLayout layout = checkExrHeader(path);
     Imf::InputFile file(path.c_str());
     const Imath::Box2i dw = file.header().dataWindow();
     const int64_t w = int64_t(dw.max.x) - dw.min.x + 1, h = int64_t(dw.max.y) - dw.min.y + 1;
@@ -236,6 +342,7 @@ Image readExr(const std::string& path) {
     }
     file.setFrameBuffer(fb);
     if (!file.isComplete()) throw Error(path, 0, "truncated data: the file is incomplete");
+    checkExrChunks(path, exrPartHeaders(path, file, layout), layout);
     file.readPixels(dw.min.y, dw.max.y);
     if (!rgb)
         for (size_t i = 0; i < image.pixelCount(); ++i)

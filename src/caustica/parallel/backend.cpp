@@ -41,12 +41,32 @@ int gpuDeviceCount() {
     return backend ? backend->deviceCount() : 0;
 }
 
+bool gpuMemoryInfo(size_t& freeBytes, size_t& totalBytes) {
+    freeBytes = totalBytes = 0;
+    const GpuBackend* backend = gpuBackend();
+    return backend && backend->memoryInfo(freeBytes, totalBytes);
+}
+
+size_t gpuPeakBytes() {
+    const GpuBackend* backend = gpuBackend();
+    return backend ? backend->peakBytes() : 0;
+}
+
+void resetGpuPeakBytes() {
+    if (const GpuBackend* backend = gpuBackend()) backend->resetPeakBytes();
+}
+
+std::string gpuDescription() {
+    const GpuBackend* backend = gpuBackend();
+    return backend ? backend->describe() : std::string();
+}
+
 namespace detail {
 
 [[noreturn]] void throwHostLaunchOnGpu(const char* name) {
     throw Error(std::string("parallelFor '") + (name ? name : "?") +
                 "': a host-compiled kernel cannot run on a CUDA device; launch it with "
-                "parallelForDevice from cuda/parallel_for_cuda.h in a .cu file");
+                "launch() (parallel/launch.h) from a driver compiled for the GPU");
 }
 
 void* allocateOn(const Device& device, size_t bytes) {
@@ -80,6 +100,10 @@ void zeroOn(const Device& device, void* dst, size_t bytes) {
     } else {
         requireGpuBackend("Buffer zero").zero(dst, bytes);
     }
+}
+
+void synchronizeOn(const Device& device) {
+    if (!device.isCpu()) requireGpuBackend("synchronize").synchronize();
 }
 
 }  // namespace detail

@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 
 #include "caustica/parallel/device.h"
 
@@ -33,6 +34,13 @@ struct GpuBackend {
     double (*reduceSum)(const float* in, size_t n) = nullptr;
     float (*reduceMax)(const float* in, size_t n) = nullptr;
     uint64_t (*reduceSumU32)(const uint32_t* in, size_t n) = nullptr;  // in 64 bits
+    /// Free and total memory of the current GPU; false (and zeros) without one. Never throws.
+    bool (*memoryInfo)(size_t& freeBytes, size_t& totalBytes) = nullptr;
+    /// Bytes held through the backend at most since the last resetPeakBytes. Never throw.
+    size_t (*peakBytes)() = nullptr;
+    void (*resetPeakBytes)() = nullptr;
+    /// "NVIDIA H200 (sm_90, 139.8 GiB)"; "" without a GPU. Never throws.
+    std::string (*describe)() = nullptr;
 };
 
 /// Installs (or with nullptr removes) the GPU backend. The table must outlive its use.
@@ -43,6 +51,11 @@ const GpuBackend* gpuBackend();
 const GpuBackend& requireGpuBackend(const char* what);
 /// GPUs visible through the installed backend; 0 without one.
 int gpuDeviceCount();
+/// The backend's memory figures and description (GpuBackend); false, 0 and "" without one.
+bool gpuMemoryInfo(size_t& freeBytes, size_t& totalBytes);
+size_t gpuPeakBytes();
+void resetGpuPeakBytes();
+std::string gpuDescription();
 
 namespace detail {
 /// Raw memory on a device: 64-byte aligned host memory on the CPU, cudaMalloc on CUDA.
@@ -51,6 +64,8 @@ void releaseOn(const Device& device, void* ptr) noexcept;
 /// Copies bytes between host memory and memory of `device` (either direction) or within it.
 void copyOn(const Device& device, void* dst, const void* src, size_t bytes);
 void zeroOn(const Device& device, void* dst, size_t bytes);
+/// Waits for every kernel launched on `device` (a no-op on the CPU, whose launches return done).
+void synchronizeOn(const Device& device);
 }  // namespace detail
 
 }  // namespace caustica

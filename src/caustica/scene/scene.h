@@ -9,6 +9,7 @@
 
 #include "caustica/scene/bsdf_data.h"
 #include "caustica/scene/camera.h"
+#include "caustica/scene/integrator_spec.h"
 #include "caustica/scene/light_data.h"
 #include "caustica/scene/shape.h"
 #include "caustica/scene/texture.h"
@@ -43,43 +44,6 @@ struct FilmDesc {
     int width = 768, height = 576;
     FilterDesc filter;
     ToneMapDesc tonemap;
-};
-
-enum class IntegratorType : uint32_t { Path, Direct, Mlt };
-
-/// The integrator's name as the CLI and the scene format spell it ("path", "direct", "mlt").
-inline const char* integratorTypeName(IntegratorType type) {
-    switch (type) {
-        case IntegratorType::Path: return "path";
-        case IntegratorType::Direct: return "direct";
-        case IntegratorType::Mlt: return "mlt";
-    }
-    return "?";
-}
-
-/// Parses an integrator name as integratorTypeName spells it; false when unknown.
-inline bool parseIntegratorType(const std::string& name, IntegratorType& type) {
-    for (IntegratorType t : {IntegratorType::Path, IntegratorType::Direct, IntegratorType::Mlt})
-        if (name == integratorTypeName(t)) {
-            type = t;
-            return true;
-        }
-    return false;
-}
-
-struct IntegratorDesc {
-    IntegratorType type = IntegratorType::Path;
-    int maxDepth = -1;          // Mitsuba's meaning: longest path in segments; -1 = unbounded
-    int rrDepth = 5;            // Russian roulette from this depth on
-    bool hideEmitters = false;  // directly visible emitters render black
-    // mlt (primary-sample-space Metropolis over the path tracer; integrators/mlt)
-    uint32_t mltChains = 0;                  // 0: the renderer's default
-    uint64_t mltBootstrapSamples = 0;        // 0: the renderer's default
-    Float mltLargeStepProbability = 0.1f;
-    uint32_t mltProposals = 1;               // split-transition proposals per step
-    bool mltRelativeTarget = true;           // target luminance / pixel brightness (mlt_target.h)
-    int emitterSamples = 1;     // direct: light samples per camera sample (emitter_samples)
-    int bsdfSamples = 1;        // direct: BSDF samples per camera sample (bsdf_samples)
 };
 
 /// World-space bounds of an analytic cylinder (scene.cpp).
@@ -137,10 +101,13 @@ struct Scene {
 
     Camera camera;
     FilmDesc film;
-    IntegratorDesc integrator;
+    IntegratorSpec integrator;  // the <integrator> as written; each integrator reads its own settings
     int sampleCount = 4;   // sampler sample_count (samples per pixel)
     uint64_t seed = 0;     // sampler seed (Mitsuba's <integer name="seed">)
     std::string sourceFile;
+    /// Every file the scene was read from (scene XML, includes, meshes, images) in reading order,
+    /// possibly repeated: a checkpoint identifies the render by their contents (render/).
+    std::vector<std::string> inputFiles;
 
     SceneView view() const {
         SceneView v;

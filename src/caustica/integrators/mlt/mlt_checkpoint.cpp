@@ -1,6 +1,7 @@
 #include "caustica/integrators/mlt/mlt_checkpoint.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cstring>
 #include <istream>
 #include <ostream>
@@ -23,6 +24,35 @@ uint64_t floatBits(float f) {
     return uint64_t(u);
 }
 
+float bitsFloat(uint64_t bits) {
+    const uint32_t u = uint32_t(bits);
+    float f;
+    std::memcpy(&f, &u, 4);
+    return f;
+}
+
+/// The shortest decimal that reads back as the same float (0.1, not 0.100000001).
+std::string showFloat(uint64_t bits) {
+    char buf[32];
+    const auto r = std::to_chars(buf, buf + sizeof buf, bitsFloat(bits));
+    return std::string(buf, r.ptr);
+}
+
+std::string showSigned(uint64_t v) { return std::to_string(int64_t(v)); }  // -1: unbounded depth
+
+std::string showState(uint64_t v) { return v == uint64_t(MltStateKind::Float) ? "float" : "compact"; }
+
+std::string showTarget(uint64_t v) { return v == uint64_t(MltTarget::Relative) ? "relative" : "luminance"; }
+
+/// A filter's key: its type in the high 32 bits, its radius's float bits in the low ones.
+uint64_t filterKey(const Filter& filter) { return uint64_t(filter.type) << 32 | floatBits(filter.radius); }
+
+std::string showFilter(uint64_t key) {
+    static const char* const kNames[] = {"box", "tent", "gaussian"};
+    const uint64_t type = key >> 32;
+    return std::string(type < 3 ? kNames[type] : "unknown") + " of radius " + showFloat(key & 0xffffffffu);
+}
+
 }  // namespace
 
 MltCheckpointKeys mltCheckpointKeys(const MltStepParams& params, const MltSettings& settings, uint32_t storedDims,
@@ -32,15 +62,15 @@ MltCheckpointKeys mltCheckpointKeys(const MltStepParams& params, const MltSettin
             {"seed", params.seed},
             {"chains", settings.chains},
             {"proposals", settings.proposals},
-            {"state (0 compact, 1 float)", uint64_t(settings.state)},
-            {"target (0 luminance, 1 relative)", uint64_t(settings.target)},
+            {"chain state", uint64_t(settings.state), showState},
+            {"target", uint64_t(settings.target), showTarget},
             {"stored dimensions", storedDims},
-            {"large-step probability bits", floatBits(settings.largeStepProbability)},
-            {"s1 bits", floatBits(settings.mutation.s1)},
-            {"s2 bits", floatBits(settings.mutation.s2)},
-            {"max depth", uint64_t(int64_t(params.path.maxDepth))},
-            {"rr depth", uint64_t(int64_t(params.path.rrDepth))},
-            {"filter (type x 2^32 + radius bits)", (uint64_t(filter.type) << 32) | floatBits(filter.radius)},
+            {"large-step probability", floatBits(settings.largeStepProbability), showFloat},
+            {"small-step size s1", floatBits(settings.mutation.s1), showFloat},
+            {"small-step size s2", floatBits(settings.mutation.s2), showFloat},
+            {"max depth", uint64_t(int64_t(params.path.maxDepth)), showSigned},
+            {"rr depth", uint64_t(int64_t(params.path.rrDepth)), showSigned},
+            {"filter", filterKey(filter), showFilter},
             {"splat batch", mltSplatBatch(settings, uint32_t(params.width) * uint32_t(params.height))}};
 }
 
@@ -57,7 +87,7 @@ std::optional<uint64_t> peekMltCheckpointKey(std::istream& in, const MltCheckpoi
         if (std::memcmp(magic, kMagic, sizeof magic) != 0 || r.u32() != kVersion) return std::nullopt;
         std::optional<uint64_t> found;
         for (const auto& key : keys)
-            if (const uint64_t value = r.u64(); name == key.first) found = value;
+            if (const uint64_t value = r.u64(); name == key.name) found = value;
         // The rest up to the trailing hash, in chunks, so that the whole file is checked.
         std::vector<char> chunk(size_t(1) << 20);
         for (uint64_t rest = uint64_t(size) - headerBytes - 8; rest > 0;) {
@@ -90,7 +120,7 @@ void writeMltCheckpoint(std::ostream& out, const MltCheckpointKeys& keys, const 
     BinaryWriter w(out, "MLT checkpoint");
     w.bytes(kMagic, sizeof kMagic);
     w.u32(kVersion);
-    for (const auto& [name, value] : keys) w.u64(value);
+    for (const auto& key : keys) w.u64(key.value);
     const MltStats& s = c.stats;
     for (uint64_t v : {s.iterations, s.proposals, s.accepted, s.rays, s.largeSteps, s.bootstrapSamples}) w.u64(v);
     for (double t : {s.bootstrapSeconds, s.traceSeconds, s.advanceSeconds, s.splatSeconds, s.sortSeconds}) w.f64(t);
@@ -134,10 +164,12 @@ MltCheckpoint readMltCheckpoint(std::istream& in, const MltCheckpointKeys& keys,
         throw Error("MLT checkpoint: not an MLT checkpoint (bad magic number)");
     if (const uint32_t version = r.u32(); version != kVersion)
         throw Error("MLT checkpoint: unsupported version " + std::to_string(version));
-    for (const auto& [name, value] : keys)
-        if (const uint64_t saved = r.u64(); saved != value)
-            throw Error(std::string("MLT checkpoint: rendered with ") + name + " " + std::to_string(saved) +
-                        ", this render has " + std::to_string(value) + "; resume with the same settings");
+    for (const auto& key : keys)
+        if (const uint64_t saved = r.u64(); saved != key.value) {
+            auto show = [&](uint64_t v) { return key.show ? key.show(v) : std::to_string(v); };
+            throw Error(std::string("MLT checkpoint: ") + key.name + " differs (written for " + show(saved) +
+                        "; now " + show(key.value) + "); resume with the same settings");
+        }
     MltCheckpoint c;
     MltStats& s = c.stats;
     s = current;

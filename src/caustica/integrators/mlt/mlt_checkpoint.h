@@ -1,5 +1,5 @@
-// mlt_checkpoint.h — the resumable MLT checkpoint both drivers write and read (CPU:
-// mlt_integrator.cpp, GPU: cuda/gpu_mlt.cu). Arrays travel through host copies
+// mlt_checkpoint.h — the resumable MLT checkpoint the driver (mlt_driver.h) writes and reads on
+// every device. Arrays travel through host copies
 // (Buffer::toHost / copyFromHost), so device buffers work as host ones do.
 //
 //   char[8] "CAMLTCK1" | u32 version | u64 values that must match (mltCheckpointKeys)
@@ -15,8 +15,8 @@
 #include <cstdint>
 #include <iosfwd>
 #include <optional>
+#include <string>
 #include <string_view>
-#include <utility>
 #include <vector>
 
 #include "caustica/film/filter.h"
@@ -25,9 +25,14 @@
 
 namespace caustica {
 
-/// (name, value) pairs a checkpoint must agree on with the render resuming it; a mismatch is an
-/// error naming the setting and both values.
-using MltCheckpointKeys = std::vector<std::pair<const char*, uint64_t>>;
+/// A value a checkpoint must agree on with the render resuming it; a mismatch is an error naming
+/// the setting and both values, as `show` writes them (nullptr: a decimal number).
+struct MltCheckpointKey {
+    const char* name;
+    uint64_t value;
+    std::string (*show)(uint64_t) = nullptr;
+};
+using MltCheckpointKeys = std::vector<MltCheckpointKey>;
 MltCheckpointKeys mltCheckpointKeys(const MltStepParams& params, const MltSettings& settings, uint32_t storedDims,
                                     const Filter& filter);
 

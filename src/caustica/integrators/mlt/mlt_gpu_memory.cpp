@@ -5,8 +5,26 @@
 #include "caustica/integrators/mlt/mlt_buffers.h"
 #include "caustica/integrators/mlt/mlt_impl.h"
 #include "caustica/integrators/mlt/mlt_splat.h"
+#include "caustica/integrators/path/gpu_memory.h"
+#include "caustica/parallel/backend.h"
+#include "caustica/util/error.h"
 
 namespace caustica {
+
+void checkGpuMltMemory(const Scene& scene, const Bvh& bvh, const PathSettings& path, const MltSettings& settings) {
+    size_t freeBytes = 0, totalBytes = 0;
+    if (!gpuMemoryInfo(freeBytes, totalBytes)) return;
+    const GpuMemoryEstimate sceneBytes = estimateGpuMemory(gpuRenderSizes(scene, bvh, 1, PathMode::Megakernel));
+    const uint32_t pixels = uint32_t(scene.film.width) * uint32_t(scene.film.height);
+    const MltGpuMemoryEstimate mlt = estimateMltGpuMemory(settings, mltStoredBounces(path), pixels);
+    const size_t need = sceneBytes.scene + sceneBytes.bvh + mlt.total();
+    if (need <= freeBytes) return;
+    throw Error("GPU memory: MLT needs about " + formatBytes(need) + " (scene and BVH " +
+                formatBytes(sceneBytes.scene + sceneBytes.bvh) + ", chains " +
+                formatBytes(mlt.chainState + mlt.chainScratch + mlt.chainSort) + ", bootstrap " +
+                formatBytes(mlt.bootstrap) + ") but only " + formatBytes(freeBytes) + " is free on " +
+                gpuDescription() + "; lower --mlt-chains or --mlt-bootstrap, or use --device cpu");
+}
 
 size_t mltGpuPermuteScratchBytes(uint32_t chains, uint32_t storedBounces) {
     const size_t n = chains;

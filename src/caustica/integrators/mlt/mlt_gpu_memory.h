@@ -1,4 +1,4 @@
-// mlt_gpu_memory.h — what the GPU MLT driver (cuda/gpu_mlt.cu) allocates on the device, estimated
+// mlt_gpu_memory.h — what the GPU MLT driver (mlt_driver.h on a GPU) allocates on the device, estimated
 // from the settings alone before anything is allocated, so that a render that does not fit is
 // refused with one line instead of failing halfway. Plain C++: checked by CPU tests.
 #pragma once
@@ -41,6 +41,10 @@ inline constexpr size_t kMltCubTemporaryBytesPerSortedElement = 8;
 /// (mltStoredBounces) on a film of `pixels` pixels.
 MltGpuMemoryEstimate estimateMltGpuMemory(const MltSettings& settings, uint32_t storedBounces,
                                           uint32_t pixels);
+
+/// Refuses (one line naming what to lower) an MLT render on a GPU whose estimate, scene and BVH
+/// included, exceeds the GPU's free memory; without a GPU to ask, the allocation reports the error.
+void checkGpuMltMemory(const Scene& scene, const Bvh& bvh, const PathSettings& path, const MltSettings& settings);
 
 /// The Morton sort's permutation scratch: as large as the largest per-chain array of the
 /// compact store and the chain buffers.

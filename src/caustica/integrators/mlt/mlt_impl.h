@@ -1,4 +1,4 @@
-// mlt_impl.h — what every MLT driver shares (the CPU's in mlt_integrator.cpp, a GPU's in cuda/):
+// mlt_impl.h — what every MLT driver shares (mlt_driver.h, one per device):
 // the interface behind MltRenderer and the host-side steps that do not depend on where the
 // chains live — settings checks, kernel parameters, the choice of the chains' starts, the
 // estimate of b and the developed image. Drivers include it; users of MltRenderer do not.

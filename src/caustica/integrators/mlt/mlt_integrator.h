@@ -2,7 +2,7 @@
 // (mlt_kernel.h): bootstrap by ordinary Monte Carlo, lock-step iterations of all chains, splat
 // accumulation, optional Morton sorting of the chains, and the developed image.
 //
-//     MltRenderer mlt(scene, accel, pathSettingsFrom(scene.integrator), settings, seed);
+//     MltRenderer mlt(scene, accel, readPathSettings(params), readMltSettings(params, chains), seed);
 //     mlt.bootstrap();                       // b, and chain starts in proportion to luminance
 //     while (...) mlt.iterate();             // each chain: k proposals, splats, next state
 //     Image image = mlt.develop();
@@ -91,7 +91,7 @@ class MltRenderer {
 public:
     MltRenderer(const Scene& scene, const Accel& accel, const PathSettings& path, const MltSettings& settings,
                 uint64_t seed);
-    /// A renderer around another driver (a GPU's: cuda/); mlt_impl.h defines Impl.
+    /// The CPU's driver (above), or any device's from makeMltDriver (mlt_driver.h); mlt_impl.h defines Impl.
     struct Impl;
     explicit MltRenderer(std::unique_ptr<Impl> impl);
     ~MltRenderer();

@@ -5,6 +5,7 @@
 
 #include "caustica/accel/bvh.h"
 #include "caustica/film/film.h"
+#include "caustica/parallel/backend.h"
 #include "caustica/integrators/path/path_kernel.h"
 #include "caustica/scene/scene.h"
 #include "caustica/util/error.h"
@@ -12,14 +13,14 @@
 
 namespace caustica {
 
-GpuPathMode parseGpuPathMode(const std::string& name) {
-    if (name == "megakernel") return GpuPathMode::Megakernel;
-    if (name == "wavefront") return GpuPathMode::Wavefront;
+PathMode parsePathMode(const std::string& name) {
+    if (name == "megakernel") return PathMode::Megakernel;
+    if (name == "wavefront") return PathMode::Wavefront;
     throw Error("unknown GPU path mode '" + name + "' (expected megakernel or wavefront)");
 }
 
-const char* gpuPathModeName(GpuPathMode mode) {
-    return mode == GpuPathMode::Wavefront ? "wavefront" : "megakernel";
+const char* pathModeName(PathMode mode) {
+    return mode == PathMode::Wavefront ? "wavefront" : "megakernel";
 }
 
 size_t gpuWavefrontBytesPerPath() {
@@ -39,7 +40,7 @@ GpuMemoryEstimate estimateGpuMemory(const GpuRenderSizes& s) {
     const size_t samples = size_t(std::max(s.width, 0)) * size_t(std::max(s.height, 0)) *
                            size_t(std::max(s.samplesPerPass, 0));
     e.samplePass = samples * sizeof(PixelSample);
-    if (s.mode == GpuPathMode::Wavefront) {
+    if (s.mode == PathMode::Wavefront) {
         e.pathsInFlight = std::min(samples, std::max<size_t>(s.maxPathsInFlight, 1));
         e.pathState = e.pathsInFlight * gpuWavefrontBytesPerPath();
         // CUB's DeviceSelect temporaries are far below one word per element; plus its counter.
@@ -53,7 +54,7 @@ GpuMemoryEstimate estimateGpuMemory(const GpuRenderSizes& s) {
 }
 
 GpuRenderSizes gpuRenderSizes(const Scene& scene, const Bvh& bvh, int samplesPerPass,
-                              GpuPathMode mode, size_t maxPathsInFlight) {
+                              PathMode mode, size_t maxPathsInFlight) {
     GpuRenderSizes s;
     s.positions = scene.positions.size();
     s.normals = scene.normals.size();
@@ -79,6 +80,21 @@ GpuRenderSizes gpuRenderSizes(const Scene& scene, const Bvh& bvh, int samplesPer
     s.mode = mode;
     s.maxPathsInFlight = maxPathsInFlight;
     return s;
+}
+
+std::string checkGpuPathMemory(const Scene& scene, const Bvh& bvh, int samplesPerPass, PathMode mode) {
+    const GpuMemoryEstimate need = estimateGpuMemory(gpuRenderSizes(scene, bvh, samplesPerPass, mode));
+    size_t freeBytes = 0, totalBytes = 0;
+    const bool known = gpuMemoryInfo(freeBytes, totalBytes);
+    if (known && need.total() > freeBytes)
+        throw Error("GPU memory: the render needs about " + formatBytes(need.total()) + " but only " +
+                    formatBytes(freeBytes) + " is free on " + gpuDescription() +
+                    "; lower --res or --spp-per-pass, or use --device cpu");
+    return "GPU memory needed: about " + formatBytes(need.total()) + " (scene " + formatBytes(need.scene) +
+           ", BVH " + formatBytes(need.bvh) + ", path state " + formatBytes(need.pathState) + " for " +
+           std::to_string(need.pathsInFlight) + " paths, sample pass " + formatBytes(need.samplePass) +
+           ", scratch " + formatBytes(need.scratch) + "); " +
+           (known ? "free " + formatBytes(freeBytes) + " of " + formatBytes(totalBytes) : "free memory unknown");
 }
 
 std::string formatBytes(size_t bytes) {

@@ -12,11 +12,11 @@ namespace caustica {
 struct Scene;
 struct Bvh;
 
-enum class GpuPathMode { Megakernel, Wavefront };
+enum class PathMode { Megakernel, Wavefront };
 
-/// "megakernel" / "wavefront"; parseGpuPathMode throws caustica::Error on anything else.
-GpuPathMode parseGpuPathMode(const std::string& name);
-const char* gpuPathModeName(GpuPathMode mode);
+/// "megakernel" / "wavefront"; parsePathMode throws caustica::Error on anything else.
+PathMode parsePathMode(const std::string& name);
+const char* pathModeName(PathMode mode);
 
 /// Element counts of everything a GPU render holds: the scene's flat arrays, the own BVH and the
 /// pass dimensions. A pure description (no pointers), filled by gpuRenderSizes or by hand.
@@ -27,7 +27,7 @@ struct GpuRenderSizes {
     size_t bvhNodes = 0, bvhPrimIndices = 0, bvhPrims = 0, bvhParents = 0;
     int width = 0, height = 0;
     int samplesPerPass = 1;                 // K: samples per pixel in one pass
-    GpuPathMode mode = GpuPathMode::Megakernel;
+    PathMode mode = PathMode::Megakernel;
     size_t maxPathsInFlight = size_t(1) << 20;  // wavefront: paths traced at once
 };
 
@@ -52,7 +52,13 @@ GpuMemoryEstimate estimateGpuMemory(const GpuRenderSizes& sizes);
 
 /// The sizes of rendering `scene` with `bvh` at the film's resolution, K samples per pass.
 GpuRenderSizes gpuRenderSizes(const Scene& scene, const Bvh& bvh, int samplesPerPass,
-                              GpuPathMode mode, size_t maxPathsInFlight = size_t(1) << 20);
+                              PathMode mode, size_t maxPathsInFlight = size_t(1) << 20);
+
+/// For a path-traced render on a GPU, before anything is uploaded: the estimate as a line for the
+/// start of the render ("GPU memory needed: about ..."); throws caustica::Error (one line naming
+/// what to lower) when it exceeds the GPU's free memory. Without a GPU to ask, the line says so and
+/// the first allocation reports the error.
+std::string checkGpuPathMemory(const Scene& scene, const Bvh& bvh, int samplesPerPass, PathMode mode);
 
 /// "1.50 GiB" / "12.3 MiB" / "512 B".
 std::string formatBytes(size_t bytes);

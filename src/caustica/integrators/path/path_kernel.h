@@ -14,7 +14,7 @@
 //   (shadow)   any-hit test of the ShadowRay: the caller's intersector
 //   addShadowContribution  the NEE sample's contribution if the shadow ray was unoccluded
 // `pathRadiance` (the megakernel: one work item traces a whole path) is a loop over them; the
-// wavefront driver (wavefront.h) runs each step as its own kernel over a queue of live paths.
+// wavefront driver (wavefront_pass.h) runs each step as its own kernel over a queue of live paths.
 // Both draw the same random numbers in the same order and add radiance in the same order, so
 // they produce bit-identical images.
 //

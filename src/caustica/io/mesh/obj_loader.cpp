@@ -98,6 +98,72 @@ void validateObjText(const std::string& path, const std::string& text) {
     }
 }
 
+/// tinyobjloader reads a tag line ("t name ints/reals/strings ...") into up to 3 x 8192 values
+/// whatever the line holds, and copies all the tags read so far into every shape: a 60 KB file of
+/// "t a 8192/8192/8192" lines takes over 2 GB. caustica uses no tags, so every line tinyobj would
+/// read as one (its lines end at '\n' or '\r'; leading blanks skipped; 't' then a blank) becomes a
+/// comment. Line numbers do not change.
+void commentOutTags(std::string& text) {
+    bool lineStart = true;
+    for (size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        if (c == '\n' || c == '\r') {
+            lineStart = true;
+        } else if (lineStart && c != ' ' && c != '\t') {
+            if (c == 't' && i + 1 < text.size() && (text[i + 1] == ' ' || text[i + 1] == '\t'))
+                text[i] = '#';
+            lineStart = false;
+        }
+    }
+}
+
+/// Checks every index tinyobjloader returned against the arrays it returned, before any is used.
+/// validateObjText() reads the text its own way (it drops a '#' comment inside a line, tinyobj
+/// does not, for one), so its checks cannot make the accesses safe; this one does. tinyobj keeps
+/// no line numbers: the message names the face (counted from 1 in tinyobj's order) and corner.
+/// Material and smoothing-group ids are not used (no MaterialReader), so they are not checked.
+void checkParsedIndices(const std::string& path, const tinyobj::attrib_t& attrib,
+                        const std::vector<tinyobj::shape_t>& shapes) {
+    const size_t counts[3] = {attrib.vertices.size() / 3, attrib.texcoords.size() / 2,
+                              attrib.normals.size() / 3};
+    static const char* kWhat[3] = {"vertex", "texture coordinate", "normal"};
+    size_t face = 0;
+    for (const tinyobj::shape_t& s : shapes) {
+        const std::string where = s.name.empty() ? "" : " (group " + quoteText(s.name) + ")";
+        size_t offset = 0;
+        for (unsigned char n : s.mesh.num_face_vertices) {
+            ++face;
+            // tinyobj stores a face's corner count in an unsigned char, so a longer face wraps.
+            if (n < 3 || s.mesh.indices.size() - offset < n)
+                throw Error(path, 0,
+                            "face " + std::to_string(face) + where +
+                                ": the parser returned an inconsistent corner count " +
+                                std::to_string(n));
+            for (size_t c = 0; c < n; ++c) {
+                const tinyobj::index_t& idx = s.mesh.indices[offset + c];
+                const int i[3] = {idx.vertex_index, idx.texcoord_index, idx.normal_index};
+                for (int k = 0; k < 3; ++k) {
+                    if (k > 0 && i[k] == -1) continue;  // no vt or vn in this corner
+                    // tinyobj made the index 0-based (relative ones resolved); say it 1-based.
+                    if (i[k] < 0 || size_t(i[k]) >= counts[k])
+                        throw Error(path, 0,
+                                    "face " + std::to_string(face) + where + ", corner " +
+                                        std::to_string(c + 1) + ": " + kWhat[k] + " index " +
+                                        std::to_string(int64_t(i[k]) + 1) +
+                                        " is out of range (the file has " +
+                                        std::to_string(counts[k]) + ")");
+                }
+            }
+            offset += n;
+        }
+        if (offset != s.mesh.indices.size())
+            throw Error(path, 0,
+                        "the parser returned " + std::to_string(s.mesh.indices.size()) +
+                            " face corners" + where + " but its faces use " +
+                            std::to_string(offset));
+    }
+}
+
 struct CornerKey {
     int v, vt, vn;
     bool operator==(const CornerKey& o) const { return v == o.v && vt == o.vt && vn == o.vn; }
@@ -112,7 +178,8 @@ struct CornerHash {
 }  // namespace
 
 TriangleMesh loadObj(const std::string& path, bool flipTexCoords) {
-    const std::string text = readWholeFile(path, "mesh file");
+    std::string text = readWholeFile(path, "mesh file");
+    commentOutTags(text);
     validateObjText(path, text);
 
     tinyobj::attrib_t attrib;
@@ -124,6 +191,7 @@ TriangleMesh loadObj(const std::string& path, bool flipTexCoords) {
     if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &stream, nullptr, false,
                           false))
         throw Error(path, 0, "cannot parse OBJ: " + meshio::quoteText(err.empty() ? warn : err));
+    checkParsedIndices(path, attrib, shapes);
 
     bool allNormals = true, anyUV = false;
     size_t faces = 0;

@@ -81,14 +81,21 @@ PlyHeader parsePlyHeader(std::string_view data) {
     size_t pos = 0;
     int line = 0;
     bool sawFormat = false;
+    const char* const truncated =
+        "PLY header truncated: no 'end_header' before the end of the file";
     while (true) {
-        if (pos >= data.size()) throw Error("", line, "PLY header has no 'end_header' line");
+        if (pos >= data.size()) throw Error("", line, truncated);
         size_t end = data.find('\n', pos);
-        if (end == std::string_view::npos) end = data.size();
+        const bool lastLine = end == std::string_view::npos;
+        if (lastLine) end = data.size();
         std::string_view l = data.substr(pos, end - pos);
         pos = std::min(end + 1, data.size());
         ++line;
         std::vector<std::string_view> tok = tokenize(l, " \t\r");
+        // A file cut inside the header ends on a line that may be cut too: say so, rather than
+        // what is wrong with the cut line.
+        if (lastLine && line > 1 && (tok.empty() || tok[0] != "end_header"))
+            throw Error("", line, truncated);
         if (line == 1) {
             if (tok.size() != 1 || tok[0] != "ply")
                 throw Error("", 1, "not a PLY file (first line must be 'ply')");

@@ -29,12 +29,16 @@ public:
     uint32_t defaultBsdf(bool emitter = false);
     /// `file` found in the scene's <path> folders (latest first), else relative to the XML file
     /// that declared `object` (absolute paths unchanged).
+    /// The resolved path is recorded in scene.inputFiles.
     std::string resolvePath(const ObjectEntity& object, const std::string& file) const;
 
     std::set<int> used;  // objects built or referenced (unused named objects get a warning)
     std::map<int, uint32_t> textureIndex;  // <texture> object -> Scene::textures (build_textures.cpp)
 
 private:
+    /// Appends `path` to scene.inputFiles (Scene is held by reference) and returns it.
+    const std::string& recordInput(const std::string& path) const;
+
     std::map<int, uint32_t> bsdfIndex_;
     std::set<int> inProgress_;
     int64_t defaultBsdf_ = -1, defaultEmitterBsdf_ = -1;

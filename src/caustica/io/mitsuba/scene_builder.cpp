@@ -42,19 +42,25 @@ uint32_t BuildContext::defaultBsdf(bool emitter) {
 std::string BuildContext::resolvePath(const ObjectEntity& object, const std::string& file) const {
     namespace fs = std::filesystem;
     fs::path p(file);
-    if (p.is_absolute()) return p.string();
+    if (p.is_absolute()) return recordInput(p.string());
     // Mitsuba's file resolver: the <path> folders (latest first), then the declaring file's folder.
     std::error_code ec;
     for (const std::string& dir : desc.searchPaths) {
         fs::path candidate = (fs::path(dir) / p).lexically_normal();
-        if (fs::exists(candidate, ec)) return candidate.string();
+        if (fs::exists(candidate, ec)) return recordInput(candidate.string());
     }
-    return (fs::path(object.where.file).parent_path() / p).lexically_normal().string();
+    return recordInput((fs::path(object.where.file).parent_path() / p).lexically_normal().string());
+}
+
+const std::string& BuildContext::recordInput(const std::string& path) const {
+    scene.inputFiles.push_back(path);
+    return path;
 }
 
 Scene buildScene(const SceneDescription& desc, std::vector<std::string>& warnings) {
     Scene scene;
     scene.sourceFile = desc.file;
+    scene.inputFiles = desc.files;
     BuildContext ctx(desc, scene, warnings);
     int sensor = -1, integrator = -1;
     for (int index : desc.topLevel) {

@@ -81,6 +81,7 @@ struct ObjectEntity {
 /// Everything the XML files said, in document order.
 struct SceneDescription {
     std::string file;                   // the main scene file
+    std::vector<std::string> files;     // every XML file read (the main one, then includes)
     std::vector<ObjectEntity> objects;  // nested objects included
     std::vector<int> topLevel;          // indices of the <scene>'s direct children
     std::map<std::string, int> ids;     // id -> object index (aliases included)

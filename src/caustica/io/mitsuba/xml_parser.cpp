@@ -70,7 +70,7 @@ public:
 
     SceneDescription run(const std::string& path) {
         desc_.file = path;
-        includeStack_.push_back(canonicalKey(path));
+        includeStack_.push_back({canonicalKey(path), fs::path(path).lexically_normal().string()});
         parseFile(path, nullptr, {});
         resolveReferences();
         return std::move(desc_);
@@ -85,6 +85,7 @@ private:
             if (includer) includer->fail(includeNode, e.what());
             throw;
         }
+        desc_.files.push_back(path);
         auto file = std::make_unique<XmlFile>(path, std::move(text), defines_);
         pugi::xml_document doc;
         pugi::xml_parse_result r = doc.load_buffer(file->text().data(), file->text().size(),
@@ -150,11 +151,30 @@ private:
         if (!fs::exists(target, ec))
             f.fail(node, "included file '" + target.string() + "' not found");
         std::string key = canonicalKey(target);
-        if (std::find(includeStack_.begin(), includeStack_.end(), key) != includeStack_.end())
-            f.fail(node, "include cycle: '" + target.string() + "' includes itself");
-        includeStack_.push_back(key);
+        auto again = std::find_if(includeStack_.begin(), includeStack_.end(),
+                                  [&](const IncludedFile& i) { return i.key == key; });
+        if (again != includeStack_.end()) f.fail(node, "include cycle: " + cycleText(again));
+        includeStack_.push_back({key, target.string()});
         parseFile(target.string(), &f, node);
         includeStack_.pop_back();
+    }
+
+    /// A file being read (the scene, or an include inside it): its identity and its path.
+    struct IncludedFile {
+        std::string key, path;
+    };
+
+    /// "a.xml -> b.xml -> a.xml": the files from `first` on (the cycle), named relative to
+    /// first's folder when they are inside it.
+    std::string cycleText(std::vector<IncludedFile>::const_iterator first) const {
+        const fs::path folder = fs::path(first->path).parent_path();
+        auto name = [&](const std::string& path) {
+            const fs::path relative = fs::path(path).lexically_relative(folder);
+            return relative.empty() || *relative.begin() == ".." ? path : relative.string();
+        };
+        std::string text;
+        for (auto it = first; it != includeStack_.end(); ++it) text += name(it->path) + " -> ";
+        return text + name(first->path);
     }
 
     /// <path value="dir"/>: a folder searched for relative file names, relative to this file.
@@ -258,7 +278,7 @@ private:
 
     Defines& defines_;
     SceneDescription desc_;
-    std::vector<std::string> includeStack_;
+    std::vector<IncludedFile> includeStack_;  // the scene, then the includes being read
     int depth_ = 0;
 };
 

@@ -1,0 +1,85 @@
+#include "render_options.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include "commands.h"
+#include "caustica/render/integrator_registry.h"
+#include "caustica/util/error.h"
+
+namespace caustica::cli {
+
+CLI::Validator finiteRange(double lo, double hi, const std::string& bounds) {
+    return CLI::Validator(
+        [lo, hi, bounds](std::string& text) -> std::string {
+            char* end = nullptr;
+            const double v = std::strtod(text.c_str(), &end);
+            if (end == text.c_str() || *end != '\0') return "'" + text + "' is not a number";
+            if (!std::isfinite(v) || v < lo || v > hi) return "'" + text + "' is not a finite number in " + bounds;
+            return {};
+        },
+        bounds);
+}
+
+void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
+    RenderRequest& r = o.request;
+    RunControl& c = o.control;
+    cmd.add_option("scene", o.scene, "Scene file (Mitsuba 3 XML)")->required()->check(CLI::ExistingFile);
+    cmd.add_option("-o,--output", c.outputs, "Output image(s): .exr (float RGB + metadata), .pfm, .png (sRGB); "
+                   "repeatable. Default: SCENE_NAME.exr in the current directory");
+    cmd.add_option("--spp", r.samplesPerPixel, "Samples per pixel of the whole render, resumes included (default: "
+                   "the scene's sample_count; with --time alone: unlimited)")->check(CLI::Range(1, 1 << 24));
+    cmd.add_option("--time", r.timeLimit, "Time budget in seconds of the whole render, resumes included; stops "
+                   "after the step that reaches it")->check(finiteRange(1e-3, 1e7, "[0.001, 10000000] seconds"));
+    cmd.add_option("--threads", o.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 4096));
+    cmd.add_option("--seed", o.seed, "Seed of the random streams (default: the scene sampler's seed)");
+    cmd.add_option("--res", o.res, "Override the film resolution, WIDTHxHEIGHT");
+    cmd.add_option("-D,--define", o.defines, "Set a scene <default> parameter: -D name=value (repeatable)");
+    cmd.add_option("--accel", o.accel, "Ray-tracing backend on the CPU (a GPU traces the own BVH)")
+        ->check(CLI::IsMember({"embree", "bvh"}));
+    std::vector<std::string> names;
+    for (const IntegratorEntry& e : integratorRegistry()) names.push_back(e.name);
+    cmd.add_option("--integrator", r.integrator, "Integrator (overrides the scene's): " + integratorNames())
+        ->check(CLI::IsMember(names));
+    cmd.add_option("--path-mode", r.pathMode, "Path tracer execution on the CPU: megakernel or wavefront (same image)")
+        ->check(CLI::IsMember({"megakernel", "wavefront"}));
+    cmd.add_option("--device", r.device, "Where to render: cpu, cuda, or auto (the GPU when this binary has the "
+                   "CUDA backend and a GPU is present, else the CPU)")->check(CLI::IsMember({"cpu", "cuda", "auto"}));
+    cmd.add_option("--gpu-mode", r.gpuMode, "Path tracer execution on the GPU: megakernel or wavefront")
+        ->check(CLI::IsMember({"megakernel", "wavefront"}));
+    cmd.add_flag("--kernel-stats", o.kernelStats, "Time every named kernel launch and print the table at the end");
+    cmd.add_option("--stats-json", c.statsJson, "Write the final statistics as JSON to this file");
+    cmd.add_option("--spp-per-pass", r.samplesPerPass, "Samples per pixel in one pass (progress and checkpoint "
+                   "granularity; default: about 256k samples a pass)")->check(CLI::Range(1, 4096));
+    cmd.add_option("--checkpoint-every", c.checkpointEvery, "Seconds between checkpoints (images + OUTPUT.ckpt); "
+                   "0 disables")->check(finiteRange(0, 1e7, "[0, 10000000] seconds"));
+    cmd.add_flag("--resume", c.resume, "Continue the render saved in OUTPUT.ckpt (same scene and settings)");
+    cmd.add_flag("--overwrite", c.overwrite, "Start over although OUTPUT.ckpt of an unfinished render exists");
+    cmd.add_flag("-q,--quiet", c.quiet, "No progress bar");
+    // Each integrator's own options set its parameters; checked where the scene's are.
+    for (const IntegratorEntry& e : integratorRegistry())
+        for (const IntegratorOption& option : e.options) {
+            auto& [param, value] = o.integratorOptions[option.flag];
+            param = option.param;
+            cmd.add_option(option.flag, value, option.help);
+        }
+}
+
+void resolveRenderOptions(RenderOptions& o, const CLI::App& cmd) {
+    if (cmd.get_option("--seed")->count() > 0) o.request.seed = o.seed;
+    for (const auto& [flag, option] : o.integratorOptions)
+        if (cmd.get_option(flag)->count() > 0)
+            o.request.integratorParams.push_back({option.first, IntegratorParam::Kind::Text, option.second, flag});
+    if (o.control.resume && o.control.overwrite) throw Error("--resume and --overwrite exclude each other");
+    o.request.defines = parseDefines(o.defines);
+    o.request.accel = parseAccelKind(o.accel);
+    if (!o.res.empty()) {
+        int w = 0, h = 0;
+        char x = 0, extra = 0;
+        if (std::sscanf(o.res.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X'))
+            throw Error("--res " + o.res + ": expected WIDTHxHEIGHT, e.g. 640x480");
+        o.request.resolution = std::make_pair(w, h);
+    }
+}
+
+}  // namespace caustica::cli

@@ -1,0 +1,94 @@
+// megakernel_pass.h — the pass driver that traces each camera sample to completion in one work
+// item (one thread per pixel sample on a GPU), for any per-sample radiance estimator. Single
+// source (launch.h): templates only, instantiated by the driver .cpp files per device.
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+
+#include "caustica/accel/device_scene.h"
+#include "caustica/integrators/pass_driver.h"
+#include "caustica/parallel/buffer.h"
+#include "caustica/parallel/primitives.h"
+#include "caustica/scene/camera.h"
+#include "caustica/util/error.h"
+#include "caustica/util/rng.h"
+
+namespace caustica {
+
+/// The start of every camera sample: sample s of pixel `pixel` (row-major, `width` wide) gets the
+/// random stream (pixel, sample index, seed), a jittered film position and a camera ray.
+struct CameraSample {
+    IndependentSampler sampler;
+    Vec2f pos;
+    Ray ray;
+};
+
+CA_HD_INLINE CameraSample cameraSample(const Camera& camera, size_t pixel, int width, uint64_t sampleIndex,
+                                       uint64_t seed) {
+    CameraSample c;
+    c.sampler = IndependentSampler(pixel, sampleIndex, seed);
+    const int x = int(pixel % size_t(width)), y = int(pixel / size_t(width));
+    const Vec2f jitter = c.sampler.get2D();
+    c.pos = Vec2f(Float(x) + jitter.x, Float(y) + jitter.y);
+    c.ray = sampleCameraRay(camera, c.pos, c.sampler);  // may draw a lens sample
+    return c;
+}
+
+namespace megakernel_detail {
+
+/// One work item per pass slot: slot = pixel * k + s.
+template <class Exec, class Intersector, class Radiance>
+void tracePass(Exec exec, const char* name, const SceneView& view, const Intersector& accel,
+               const Radiance& radiance, uint64_t seed, int firstSample, int width, int k, size_t slots,
+               PixelSample* samples, uint32_t* rays) {
+    launch(exec, name, slots, [=] CA_HD(size_t slot) {
+        CameraSample c = cameraSample(view.camera, slot / size_t(k), width,
+                                      uint64_t(firstSample) + slot % size_t(k), seed);
+        uint32_t rayCount = 0;
+        const Spectrum L = radiance(view, accel, c.sampler, c.ray, rayCount);
+        samples[slot] = PixelSample{c.pos, L};
+        rays[slot] = rayCount;
+    }, 16);
+}
+
+}  // namespace megakernel_detail
+
+/// Radiance: a copyable functor with
+///     template <class I, class S> CA_HD Spectrum operator()(const SceneView&, const I&, S& sampler,
+///                                                            const Ray&, uint32_t& rays) const;
+template <class Exec, class Radiance>
+class MegakernelPass final : public PassDriver {
+public:
+    MegakernelPass(const Scene& scene, const Accel& accel, const Radiance& radiance, const char* name)
+        : scene_(scene, accel, Exec::device()), radiance_(radiance), name_(name) {}
+
+    uint64_t render(uint64_t seed, int firstSampleIndex, SamplePass& pass) override {
+        const size_t slots = pass.samples.size();
+        if (slots == 0) return 0;
+        if (rays_.size() < slots) {
+            rays_ = Buffer<uint32_t>(Exec::device(), slots);
+            if constexpr (Exec::kind != DeviceKind::Cpu) samples_ = Buffer<PixelSample>(Exec::device(), slots);
+        }
+        // The CPU's kernels write the host pass directly; a GPU's write device memory, copied after.
+        PixelSample* out = Exec::kind == DeviceKind::Cpu ? pass.samples.data() : samples_.data();
+        scene_.visit(Exec{}, [&](const auto& intersector) {
+            megakernel_detail::tracePass(Exec{}, name_, scene_.view(), intersector, radiance_, seed,
+                                         firstSampleIndex, pass.width, pass.samplesPerPixel, slots, out,
+                                         rays_.data());
+        });
+        const uint64_t rays = reduceSum(Exec::device(), Span<const uint32_t>(rays_.data(), slots));
+        if constexpr (Exec::kind != DeviceKind::Cpu) samples_.copyToHost(pass.span());
+        return rays;
+    }
+    size_t sceneBytes() const override { return scene_.bytes(); }
+
+private:
+    DeviceScene scene_;
+    Radiance radiance_;
+    const char* name_;
+    Buffer<uint32_t> rays_;
+    Buffer<PixelSample> samples_;  // a GPU's
+};
+
+}  // namespace caustica

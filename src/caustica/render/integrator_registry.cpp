@@ -1,0 +1,44 @@
+#include "caustica/render/integrator_registry.h"
+
+#include "caustica/integrators/mlt/mlt_settings.h"
+#include "caustica/util/error.h"
+
+namespace caustica {
+
+namespace {
+std::string runsOnGpu(IntegratorParams&) { return {}; }
+const std::vector<IntegratorOption> kNoOptions;
+}  // namespace
+
+const std::vector<IntegratorEntry>& integratorRegistry() {
+    static const std::vector<IntegratorEntry> entries = {
+        {"path", "unidirectional path tracing, next-event estimation + MIS", kNoOptions, runsOnGpu, describePath,
+         makePathSession},
+        {"direct", "direct illumination (emitter and BSDF sampling, MIS)", kNoOptions, runsOnGpu, describeDirect,
+         makeDirectSession},
+        {"mlt", "many-chain primary-sample-space Metropolis light transport", mltOptions(), mltGpuRefusal,
+         describeMlt, makeMltSession},
+    };
+    return entries;
+}
+
+IntegratorParams integratorParams(const IntegratorSpec& spec, const std::string& integrator,
+                                  const std::vector<IntegratorParam>& commandLine) {
+    IntegratorSpec named = spec;
+    named.type = integrator;
+    return IntegratorParams(named, commandLine);
+}
+
+std::string integratorNames() {
+    std::string names;
+    for (const IntegratorEntry& e : integratorRegistry()) names += (names.empty() ? "" : ", ") + std::string(e.name);
+    return names;
+}
+
+const IntegratorEntry& findIntegrator(const std::string& name) {
+    for (const IntegratorEntry& e : integratorRegistry())
+        if (name == e.name) return e;
+    throw Error("unknown integrator '" + name + "' (available: " + integratorNames() + ")");
+}
+
+}  // namespace caustica

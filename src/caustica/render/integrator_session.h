@@ -1,0 +1,51 @@
+// integrator_session.h — what the render session (renderer.h) needs of an integrator: advance by
+// one pass or iteration, develop, count, and carry its state in a checkpoint. One implementation
+// per kind of driver: passes of pixel samples (path, direct: pass_session.cpp) and Markov chains
+// (mlt: mlt_session.cpp). The registry (integrator_registry.h) makes them by name.
+#pragma once
+
+#include <cstdint>
+#include <cstdio>
+#include <iosfwd>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "caustica/film/image.h"
+#include "caustica/render/render_identity.h"
+
+namespace caustica {
+
+/// Counters of the current run (not of earlier runs of a resumed render).
+struct SessionCounters {
+    uint64_t samples = 0;         // camera samples (proposals for mlt)
+    uint64_t rays = 0;            // closest-hit + shadow rays
+    uint64_t invalidSamples = 0;  // NaN/Inf/negative samples dropped (whole render)
+};
+
+class IntegratorSession {
+public:
+    virtual ~IntegratorSession() = default;
+    /// One pass of samples per pixel (at most `samplesLeft` per pixel when > 0) or one MLT step
+    /// (the bootstrap first, then iterations).
+    virtual void step(double samplesLeft) = 0;
+    /// Samples (mutations for mlt) per pixel of the whole render so far.
+    virtual double samplesPerPixel() const = 0;
+    /// Whether develop() has an image yet (mlt: after its first iteration).
+    virtual bool hasImage() const = 0;
+    virtual Image develop() const = 0;
+    virtual SessionCounters counters() const = 0;
+    /// The integrator's parameters that change the image, for the checkpoint's identity.
+    virtual RenderIdentity parameters() const = 0;
+    /// The integrator's state, in its own self-checking format (inside the checkpoint envelope).
+    virtual void save(std::ostream& out) const = 0;
+    /// Restores a state written by save(); throws caustica::Error (state unchanged) on a misfit.
+    virtual void load(std::istream& in) = 0;
+    /// One line for the start of a render ("device: cpu; path-mode megakernel").
+    virtual std::string description() const = 0;
+    /// Further summary lines and statistics JSON entries (key, JSON value) of the integrator.
+    virtual void printSummary(std::FILE* out) const { (void)out; }
+    virtual std::vector<std::pair<std::string, std::string>> statsJson() const { return {}; }
+};
+
+}  // namespace caustica

@@ -1,0 +1,148 @@
+// mlt_session.cpp — the session of Metropolis light transport: a bootstrap step, then one
+// lock-step iteration of every chain per step; the checkpoint payload is the MLT state
+// (integrators/mlt/mlt_checkpoint.h).
+#include <cstdio>
+#include <memory>
+
+#include "caustica/integrators/mlt/mlt_driver.h"
+#include "caustica/integrators/mlt/mlt_integrator.h"
+#include "caustica/integrators/path/gpu_memory.h"
+#include "caustica/integrators/mlt/mlt_settings.h"
+#include "caustica/integrators/path/path_settings.h"
+#include "caustica/render/integrator_registry.h"
+#include "caustica/util/error.h"
+#include "caustica/util/progress.h"
+
+namespace caustica {
+namespace {
+
+/// The chain count a resume takes from its checkpoint when none is set (the CPU's and the GPU's
+/// defaults differ, and a checkpoint written on either resumes on the other); 0 when none.
+uint32_t savedChains(const RenderIdentity* saved) {
+    if (!saved) return 0;
+    for (const IdentityEntry& e : *saved)
+        if (e.name == "chains") return uint32_t(std::strtoul(e.value.c_str(), nullptr, 10));
+    return 0;
+}
+
+const char* stateName(MltStateKind k) { return k == MltStateKind::Compact ? "compact" : "float"; }
+const char* targetName(MltTarget t) { return t == MltTarget::Relative ? "relative" : "luminance"; }
+const char* splatName(MltSplatKind k) { return k == MltSplatKind::Atomic ? "atomic" : "sort"; }
+
+RenderIdentity mltIdentity(const PathSettings& path, const MltSettings& s) {
+    return {identityEntry("max_depth", std::to_string(path.maxDepth)),
+            identityEntry("rr_depth", std::to_string(path.rrDepth)),
+            identityEntry("hide_emitters", path.hideEmitters ? "true" : "false"),
+            identityEntry("chains", std::to_string(s.chains)),
+            identityEntry("luminance_samples", std::to_string(s.bootstrapSamples)),
+            identityEntry("p_large", identityNumber(s.largeStepProbability)),
+            identityEntry("proposals", std::to_string(s.proposals)),
+            identityEntry("s1", identityNumber(s.mutation.s1)),
+            identityEntry("s2", identityNumber(s.mutation.s2)),
+            identityEntry("state", stateName(s.state)),
+            identityEntry("target", targetName(s.target)),
+            identityEntry("start", s.start == MltStart::Bootstrap ? "bootstrap" : "uniform"),
+            identityEntry("sort_every", std::to_string(s.sortEvery))};
+}
+
+class MltSession final : public IntegratorSession {
+public:
+    MltSession(const SessionContext& c, const PathSettings& path, const MltSettings& settings)
+        : path_(path), device_(c.device) {
+        mlt_ = std::make_unique<MltRenderer>(onDevice(c.device, [&](auto exec) {
+            return makeMltDriver<decltype(exec)>(c.scene, c.accel, path_, settings, c.seed);
+        }));
+    }
+
+    void step(double) override {
+        if (!mlt_->started()) {
+            mlt_->bootstrap();
+            return;
+        }
+        mlt_->iterate();
+        iterated_ = true;
+    }
+    double samplesPerPixel() const override { return mlt_->mutationsPerPixel(); }
+    bool hasImage() const override { return iterated_ || mlt_->stats().iterations > 0; }
+    Image develop() const override { return mlt_->develop(); }
+    SessionCounters counters() const override {
+        const MltStats& s = mlt_->stats();
+        return SessionCounters{s.proposals - proposalsAtLoad_, s.rays - raysAtLoad_, 0};
+    }
+    RenderIdentity parameters() const override { return mltIdentity(path_, mlt_->settings()); }
+    void save(std::ostream& out) const override { mlt_->save(out); }
+    void load(std::istream& in) override {
+        mlt_->load(in);
+        proposalsAtLoad_ = mlt_->stats().proposals;
+        raysAtLoad_ = mlt_->stats().rays;
+    }
+    std::string description() const override {
+        const MltSettings& s = mlt_->settings();
+        char line[256];
+        std::snprintf(line, sizeof line, "device: %s; integrator mlt, %u chains x %u proposals, %s target, %s state, %s splats",
+                      deviceName(device_.kind), s.chains, s.proposals, targetName(s.target), stateName(s.state),
+                      splatName(s.splat));
+        return line;
+    }
+    void printSummary(std::FILE* out) const override {
+        const MltStats& s = mlt_->stats();
+        const MltSettings& set = mlt_->settings();
+        std::fprintf(out, "mlt         b = %.6g (%llu bootstrap + %llu large-step samples), %s target\n", s.b,
+                     (unsigned long long)s.bootstrapSamples, (unsigned long long)s.largeSteps, targetName(set.target));
+        std::fprintf(out, "mlt chains  %u x %u proposals, %llu iterations, %.3g mutations/pixel, acceptance %.1f%%\n",
+                     set.chains, set.proposals, (unsigned long long)s.iterations, mlt_->mutationsPerPixel(),
+                     s.iterations > 0 ? 100.0 * double(s.accepted) / double(uint64_t(set.chains) * s.iterations) : 0.0);
+        std::fprintf(out, "mlt memory  %zu bytes/chain (%s state), %s chain state, %s scratch\n", s.bytesPerChain,
+                     stateName(set.state), formatBytes(s.stateBytes).c_str(), formatBytes(s.scratchBytes).c_str());
+        std::fprintf(out, "mlt time    bootstrap %.3f s, trace %.3f s, advance %.3f s, splat (%s) %.3f s, sort %.3f s\n",
+                     s.bootstrapSeconds, s.traceSeconds, s.advanceSeconds, splatName(set.splat), s.splatSeconds,
+                     s.sortSeconds);
+    }
+    std::vector<std::pair<std::string, std::string>> statsJson() const override {
+        const MltStats& s = mlt_->stats();
+        return {{"mlt_b", identityNumber(s.b)},
+                {"mlt_iterations", std::to_string(s.iterations)},
+                {"mlt_mutations_per_pixel", identityNumber(mlt_->mutationsPerPixel())},
+                {"mlt_accepted", std::to_string(s.accepted)},
+                {"mlt_bytes_per_chain", std::to_string(s.bytesPerChain)},
+                {"mlt_state_bytes", std::to_string(s.stateBytes)},
+                {"mlt_bootstrap_seconds", identityNumber(s.bootstrapSeconds)},
+                {"mlt_trace_seconds", identityNumber(s.traceSeconds)},
+                {"mlt_splat_seconds", identityNumber(s.splatSeconds)},
+                {"mlt_sort_seconds", identityNumber(s.sortSeconds)}};
+    }
+
+private:
+    PathSettings path_;
+    Device device_;
+    std::unique_ptr<MltRenderer> mlt_;
+    bool iterated_ = false;
+    uint64_t proposalsAtLoad_ = 0, raysAtLoad_ = 0;
+};
+
+}  // namespace
+
+std::string mltGpuRefusal(IntegratorParams& params) {
+    if (params.getString("state", "compact", {"compact", "float"}) != "compact")
+        return "--mlt-state float is not available on the GPU (its MLT kernels are compiled for the compact state "
+               "only); use --mlt-state compact or --device cpu";
+    return {};
+}
+
+std::unique_ptr<IntegratorSession> makeMltSession(const SessionContext& c) {
+    const uint64_t pixels = uint64_t(c.scene.film.width) * uint64_t(c.scene.film.height);
+    uint32_t chains = mltDefaultChains(!c.device.isCpu(), pixels);
+    if (const uint32_t saved = savedChains(c.resumeFrom)) chains = saved;
+    const PathSettings path = readPathSettings(c.params);
+    return std::make_unique<MltSession>(c, path, readMltSettings(c.params, chains));
+}
+
+std::string describeMlt(IntegratorParams& params) {
+    const PathSettings path = readPathSettings(params);
+    std::string line;
+    for (const IdentityEntry& e : mltIdentity(path, readMltSettings(params, kMltDefaultChains)))
+        line += (line.empty() ? "" : ", ") + e.name + " " + e.value;
+    return line + " (chains: on a CPU; a GPU's default differs)";
+}
+
+}  // namespace caustica

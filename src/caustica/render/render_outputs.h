@@ -1,0 +1,33 @@
+// render_outputs.h — what a render writes: images with metadata, statistics as text and JSON, and
+// the checks that every path can be written, made before the first sample.
+#pragma once
+
+#include <cstdio>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "caustica/film/image.h"
+#include "caustica/scene/scene.h"
+
+namespace caustica {
+
+class Renderer;
+
+/// Refuses, before any rendering, an image path caustica cannot write: an unknown extension, a
+/// missing folder, a folder or file without write permission. Errors name `path`.
+void checkImageOutputPath(const std::string& path);
+/// Refuses a path (statistics, checkpoint) that cannot be written, naming it.
+void checkWritablePath(const std::string& path, const char* what);
+/// The output written when none is given: SCENE_NAME.png for an ldrfilm (as Mitsuba writes an
+/// LDR film's image), SCENE_NAME.exr otherwise, in the current directory.
+std::string defaultOutputPath(const std::string& scenePath, const FilmDesc& film);
+/// Writes `image` to every path (.exr, .pfm: linear radiance with the render's metadata; .png:
+/// 8-bit sRGB, or tone-mapped when the scene's film is an ldrfilm), each through a temporary file
+/// and a rename.
+void writeRenderImages(const std::vector<std::string>& paths, const Image& image, const Renderer& renderer);
+void printRenderSummary(const Renderer& renderer, std::FILE* out);
+/// The statistics as JSON (the integrator's own entries included), written atomically.
+void writeRenderStatsJson(const std::string& path, const Renderer& renderer, bool cancelled);
+
+}  // namespace caustica

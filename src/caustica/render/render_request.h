@@ -1,0 +1,36 @@
+// render_request.h — what a caller asks of a render besides the scene: integrator, budgets,
+// device and execution choices, integrator overrides. The CLI and (later) the Python module fill
+// it; render/ resolves it against the scene (Renderer).
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "caustica/accel/accel.h"
+#include "caustica/scene/integrator_spec.h"
+
+namespace caustica {
+
+struct RenderRequest {
+    std::string integrator;         // "" = the scene's <integrator>
+    std::optional<uint64_t> seed;   // default: the scene's sampler seed
+    /// Budgets, totals of the whole render across resumes. Samples per pixel (mutations per
+    /// pixel for mlt); with neither set, the scene's sample_count.
+    int samplesPerPixel = 0;
+    double timeLimit = 0;           // seconds of rendering
+    int samplesPerPass = 0;         // pass-based integrators; 0: about 256k samples a pass
+    std::optional<std::pair<int, int>> resolution;  // replaces the film's size (and any crop)
+    std::map<std::string, std::string> defines;     // the -D values the scene was loaded with
+    std::string device = "auto";    // cpu | cuda | auto
+    AccelKind accel = AccelKind::Embree;  // the CPU's ray tracer (a GPU traces the own BVH)
+    std::string pathMode = "megakernel";  // CPU path tracer: megakernel | wavefront
+    std::string gpuMode = "megakernel";   // GPU path tracer: megakernel | wavefront
+    /// The integrator's parameters set on the command line (integrator_registry.h lists each
+    /// integrator's options); they take the place of the scene's of the same name.
+    std::vector<IntegratorParam> integratorParams;
+};
+
+}  // namespace caustica

@@ -1,0 +1,49 @@
+// render_run.h — the one loop that drives every render to its budget: the checkpoint rules
+// (resume, overwrite), periodic checkpoints with images, Ctrl-C, the progress bar, the outputs.
+// `caustica render` is a thin caller of it:
+//
+//     RunControl control{...};
+//     std::optional<CheckpointHeader> resume = prepareRun(control);  // fails before rendering
+//     Renderer renderer(std::move(scene), request, resume ? &*resume : nullptr);
+//     RunResult result = runRender(renderer, control);
+#pragma once
+
+#include <atomic>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "caustica/render/checkpoint_envelope.h"
+#include "caustica/render/renderer.h"
+
+namespace caustica {
+
+struct RunControl {
+    std::vector<std::string> outputs;  // images, written at every checkpoint and at the end
+    std::string checkpoint;            // OUTPUT.ckpt; "" = none
+    double checkpointEvery = 60;       // seconds of this run between checkpoints; 0 = none but the last
+    bool resume = false;               // continue the render saved in `checkpoint`
+    bool overwrite = false;            // start over although `checkpoint` exists
+    std::string statsJson;             // "" = none
+    bool quiet = false;                // no progress bar, no start lines
+    bool catchInterrupts = true;       // Ctrl-C / SIGTERM finish the step and save (interrupt.h)
+    const std::atomic<bool>* cancel = nullptr;  // also stops after the current step when set
+};
+
+struct RunResult {
+    bool cancelled = false;
+    std::vector<std::string> written;  // every file the run wrote last (images, checkpoint, statistics)
+};
+
+/// Checks, before anything is rendered, that every output can be written and that the checkpoint
+/// rules hold: a `checkpoint` that exists needs `resume` (continue) or `overwrite` (start over);
+/// `resume` needs one. Returns the checkpoint's header when resuming. Throws caustica::Error.
+std::optional<CheckpointHeader> prepareRun(const RunControl& control);
+
+/// Loads the checkpoint when resuming (a mismatch throws and leaves it untouched), renders until
+/// the budget is spent or an interrupt, writes images (and a checkpoint every checkpointEvery
+/// seconds), and at the end the images, the statistics JSON and, when interrupted, the
+/// checkpoint. A finished render removes its checkpoint.
+RunResult runRender(Renderer& renderer, const RunControl& control);
+
+}  // namespace caustica

@@ -1,0 +1,178 @@
+#include "caustica/render/renderer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+
+#include "caustica/parallel/device_select.h"
+#include "caustica/render/integrator_registry.h"
+#include "caustica/util/atomic_file.h"
+#include "caustica/util/error.h"
+#include "caustica/util/progress.h"
+
+namespace caustica {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// The scene's part of the identity: input files by content, -D values, film size and crop.
+RenderIdentity sceneIdentity(const Scene& scene, const RenderRequest& request, uint64_t seed) {
+    RenderIdentity id;
+    // A scene built in memory (tests, scripts) has no file: its arrays are the caller's business.
+    id.push_back(scene.sourceFile.empty() ? identityEntry("scene file", "none (built in memory)")
+                                          : fileIdentityEntry("scene file", scene.sourceFile));
+    std::vector<std::string> seen{scene.sourceFile};
+    for (const std::string& file : scene.inputFiles) {
+        if (std::find(seen.begin(), seen.end(), file) != seen.end()) continue;
+        seen.push_back(file);
+        id.push_back(fileIdentityEntry("input file", file));
+    }
+    std::string defines;
+    for (const auto& [name, value] : request.defines) defines += (defines.empty() ? "" : ", ") + name + "=" + value;
+    id.push_back(identityEntry("-D values", defines.empty() ? "none" : defines));
+    id.push_back(identityEntry("resolution", std::to_string(scene.film.width) + "x" + std::to_string(scene.film.height)));
+    const Camera& c = scene.camera;
+    id.push_back(identityEntry("crop window", "at " + std::to_string(c.cropX) + "," + std::to_string(c.cropY) + " of " +
+                                                  std::to_string(c.width) + "x" + std::to_string(c.height)));
+    id.push_back(identityEntry("seed", std::to_string(seed)));
+    return id;
+}
+
+}  // namespace
+
+void applyResolution(Scene& scene, int w, int h) {
+    if (w <= 0 || h <= 0 || w > 32768 || h > 32768 || int64_t(w) * h > (int64_t(1) << 28))
+        throw Error("absurd resolution " + std::to_string(w) + "x" + std::to_string(h) +
+                    " (each side 1..32768, at most 268435456 pixels)");
+    // Keeps the horizontal field of view (Mitsuba's default fov_axis="x").
+    scene.camera.tanHalfY = scene.camera.tanHalfX * Float(h) / Float(w);
+    scene.camera.width = scene.film.width = w;
+    scene.camera.height = scene.film.height = h;
+    scene.camera.cropX = scene.camera.cropY = 0;  // the whole image at the new size, no crop
+}
+
+Renderer::Renderer(Scene scene, const RenderRequest& request, const CheckpointHeader* resumeFrom)
+    : scene_(std::make_unique<Scene>(std::move(scene))) {
+    Scene& s = *scene_;
+    if (request.resolution) applyResolution(s, request.resolution->first, request.resolution->second);
+    integrator_ = request.integrator.empty() ? s.integrator.type : request.integrator;
+    const IntegratorEntry& entry = findIntegrator(integrator_);
+    IntegratorParams params = integratorParams(s.integrator, integrator_, request.integratorParams);
+    seed_ = request.seed ? *request.seed : s.seed;
+    if (!(request.timeLimit >= 0) || !std::isfinite(request.timeLimit))
+        throw Error("the time budget must be a finite number of seconds");
+    timeLimit_ = request.timeLimit;
+    targetSpp_ = request.samplesPerPixel > 0 ? request.samplesPerPixel : (timeLimit_ > 0 ? 0 : s.sampleCount);
+
+    // The device: `cuda` without a GPU fails here; `auto` falls back to the CPU for what the GPU
+    // does not run.
+    device_ = Device{selectDevice(request.device, currentDeviceAvailability())};
+    if (!device_.isCpu()) {
+        IntegratorParams probe = params;
+        if (const std::string refusal = entry.gpuRefusal(probe); !refusal.empty()) {
+            if (request.device != "auto") throw Error(refusal);
+            device_ = Device::cpu();
+        }
+    }
+    const AccelKind accelKind = device_.isCpu() ? request.accel : AccelKind::Bvh;  // a GPU traces the own BVH
+    if (s.lights.empty())
+        warnings_.push_back(s.sourceFile + ": the scene has no emitter: the image will be black");
+    identity_ = sceneIdentity(s, request, seed_);
+    const auto buildStart = Clock::now();
+    accel_ = std::make_unique<Accel>(s, accelKind);
+    accelSeconds_ = secondsSince(buildStart);
+    const SessionContext context{s, *accel_, device_, seed_, request, params,
+                                 resumeFrom ? &resumeFrom->identity : nullptr};
+    session_ = entry.make(context);
+    for (std::string& w : params.unread()) warnings_.push_back(std::move(w));
+    for (IdentityEntry& e : session_->parameters()) identity_.push_back(std::move(e));
+}
+
+Renderer::~Renderer() = default;
+
+const char* Renderer::accelName() const { return accelKindName(accel_->kind()); }
+
+std::string Renderer::description() const {
+    const Scene& s = *scene_;
+    char line[512];
+    std::snprintf(line, sizeof line, "%s: %zu triangles, %zu spheres, %zu lights; %dx%d; %s built in %s\n",
+                  s.sourceFile.c_str(), s.triangles.size(), s.spheres.size(), s.lights.size(), s.film.width,
+                  s.film.height, accelName(), ProgressReporter::formatDuration(accelSeconds_).c_str());
+    return line + session_->description() + "\n";
+}
+
+bool Renderer::finished() const {
+    if (!session_->hasImage()) return false;
+    if (targetSpp_ > 0 && session_->samplesPerPixel() >= targetSpp_) return true;
+    if (timeLimit_ > 0) {
+        // Stop when the next step would most likely overrun the budget by more than half a step.
+        const double t = priorSeconds_ + runSeconds_;
+        if (t >= timeLimit_ || t + 0.5 * lastStepSeconds_ > timeLimit_) return true;
+    }
+    return false;
+}
+
+void Renderer::step() {
+    const auto start = Clock::now();
+    session_->step(targetSpp_ > 0 ? targetSpp_ - session_->samplesPerPixel() : 0);
+    lastStepSeconds_ = secondsSince(start);
+    runSeconds_ += lastStepSeconds_;
+}
+
+RenderProgress Renderer::progress() const {
+    return RenderProgress{session_->samplesPerPixel(), targetSpp_, priorSeconds_ + runSeconds_, timeLimit_};
+}
+
+Image Renderer::develop() const { return session_->develop(); }
+
+RenderStats Renderer::stats() const {
+    const SessionCounters c = session_->counters();
+    RenderStats s;
+    s.seconds = priorSeconds_ + runSeconds_;
+    s.samples = c.samples;
+    s.rays = c.rays;
+    s.samplesPerPixel = int(std::lround(session_->samplesPerPixel()));
+    s.invalidSamples = c.invalidSamples;
+    return s;
+}
+
+void Renderer::save(const std::string& path) const {
+    CheckpointHeader header{integrator_, identity_, priorSeconds_ + runSeconds_, session_->samplesPerPixel()};
+    writeFileAtomically(path, [&](std::ostream& out) {
+        writeCheckpointHeader(out, header);
+        session_->save(out);
+    });
+}
+
+CheckpointHeader readCheckpointHeaderFile(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(path + ": cannot read the checkpoint");
+    try {
+        return readCheckpointHeader(in);
+    } catch (const Error& e) {
+        throw Error(path + ": " + e.what());
+    }
+}
+
+void Renderer::load(const std::string& path) {
+    const CheckpointHeader header = readCheckpointHeaderFile(path);
+    if (const std::string mismatch = checkpointMismatch(header, integrator_, identity_); !mismatch.empty())
+        throw Error(path + ": " + mismatch);
+    std::ifstream in(path, std::ios::binary);
+    try {
+        readCheckpointHeader(in);  // past the header, to the payload
+        session_->load(in);
+    } catch (const Error& e) {
+        throw Error(path + ": " + e.what());
+    }
+    if (std::abs(session_->samplesPerPixel() - header.samplesPerPixel) > 1e-6 * std::max(1.0, header.samplesPerPixel))
+        throw Error(path + ": damaged checkpoint (its header and its state disagree on the samples per pixel)");
+    priorSeconds_ = header.seconds;
+}
+
+}  // namespace caustica

@@ -4,3 +4,4 @@
 #include "caustica/integrators/direct/direct_pass.cpp"
 #include "caustica/integrators/mlt/mlt_driver.cpp"
 #include "caustica/integrators/path/path_pass.cpp"
+#include "caustica/integrators/sppm/sppm_driver.cpp"

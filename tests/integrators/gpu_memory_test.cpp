@@ -56,13 +56,11 @@ TEST(GpuMemory, WavefrontIsBoundedByPathsInFlight) {
     s.maxPathsInFlight = 1000;
     const GpuMemoryEstimate small = estimateGpuMemory(s);
     EXPECT_EQ(small.pathsInFlight, 1000u);
-    EXPECT_EQ(small.pathState, 1000 * gpuWavefrontBytesPerPath());
+    EXPECT_EQ(small.pathState, 1000 * wavefrontBytesPerPath());
     s.maxPathsInFlight = size_t(1) << 30;  // more than the pass: the pass bounds it
     const GpuMemoryEstimate whole = estimateGpuMemory(s);
     EXPECT_EQ(whole.pathsInFlight, size_t(64 * 48 * 4));
     EXPECT_GT(whole.total(), small.total());
-    // The GPU keeps the CPU wavefront's per-path records.
-    EXPECT_EQ(gpuWavefrontBytesPerPath(), wavefrontBytesPerPath());
 }
 
 TEST(GpuMemory, GrowsLinearlyWithSamplesPerPass) {
@@ -94,7 +92,7 @@ TEST(GpuMemory, SizesComeFromTheScene) {
     EXPECT_EQ(estimateGpuMemory(s).pathsInFlight, 7u);
 }
 
-// The BVH's share must be what GpuScene uploads, parent links included: the same four arrays
+// The BVH's share must be what DeviceScene uploads, parent links included: the same four arrays
 // BvhStats::memoryBytes counts (the GPU test compares the estimate with the upload byte for byte).
 TEST(GpuMemory, BvhShareIsEveryUploadedArray) {
     const Scene scene = test::makeRandomScene(test::sceneOf(500, 20, 5));

@@ -30,12 +30,9 @@ public:
 };
 
 /// Default bound on the number of paths the wavefront keeps in flight: a pass with more samples
-/// is traced in consecutive chunks, which bounds its memory to wavefrontBytesPerPath() times this.
+/// is traced in consecutive chunks, which bounds its memory to wavefrontBytesPerPath()
+/// (gpu_memory.h) times this.
 inline constexpr size_t kWavefrontMaxPaths = size_t(1) << 20;
-
-/// Bytes of per-path state the wavefront keeps in flight (path state, sampler, hit, pending
-/// shadow ray, queue entries and flags).
-size_t wavefrontBytesPerPath();
 
 /// The path tracer (megakernel or wavefront) on the device of `Exec`; the scene, the accel (a
 /// Bvh one for a GPU) outlive the driver. Defined per device by path_pass.cpp.

@@ -35,7 +35,7 @@ namespace detail {
 
 /// Runs kernel(i) for every i in [0, n). Work is chunked by `grain` on the CPU. `name` identifies
 /// the launch for KernelStats (timed when enabled). A CUDA device throws caustica::Error here:
-/// GPU launches go through parallelForDevice in cuda/parallel_for_cuda.h, compiled by nvcc.
+/// GPU launches go through launch(GpuExec, ...) (parallel/launch.h) in nvcc-compiled driver code.
 template <class Kernel>
 void parallelFor(const Device& device, const char* name, size_t n, Kernel&& kernel,
                  size_t grain = 64) {

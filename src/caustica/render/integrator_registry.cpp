@@ -1,6 +1,7 @@
 #include "caustica/render/integrator_registry.h"
 
 #include "caustica/integrators/mlt/mlt_settings.h"
+#include "caustica/integrators/sppm/sppm_settings.h"
 #include "caustica/util/error.h"
 
 namespace caustica {
@@ -18,6 +19,8 @@ const std::vector<IntegratorEntry>& integratorRegistry() {
          makeDirectSession},
         {"mlt", "many-chain primary-sample-space Metropolis light transport", mltOptions(), mltGpuRefusal,
          describeMlt, makeMltSession},
+        {"sppm", "stochastic progressive photon mapping (Hachisuka & Jensen 2009)", sppmOptions(), runsOnGpu,
+         describeSppm, makeSppmSession},
     };
     return entries;
 }

@@ -53,13 +53,15 @@ std::string integratorNames();
 IntegratorParams integratorParams(const IntegratorSpec& spec, const std::string& integrator,
                                   const std::vector<IntegratorParam>& commandLine);
 
-/// The sessions (pass_session.cpp, mlt_session.cpp) and their registry functions.
+/// The sessions (pass_session.cpp, mlt_session.cpp, sppm_session.cpp) and their registry functions.
 std::unique_ptr<IntegratorSession> makePathSession(const SessionContext& context);
 std::unique_ptr<IntegratorSession> makeDirectSession(const SessionContext& context);
 std::unique_ptr<IntegratorSession> makeMltSession(const SessionContext& context);
+std::unique_ptr<IntegratorSession> makeSppmSession(const SessionContext& context);
 std::string describePath(IntegratorParams& params);
 std::string describeDirect(IntegratorParams& params);
 std::string describeMlt(IntegratorParams& params);
+std::string describeSppm(IntegratorParams& params);
 std::string mltGpuRefusal(IntegratorParams& params);
 
 }  // namespace caustica

@@ -23,7 +23,7 @@ const char* pathModeName(PathMode mode) {
     return mode == PathMode::Wavefront ? "wavefront" : "megakernel";
 }
 
-size_t gpuWavefrontBytesPerPath() {
+size_t wavefrontBytesPerPath() {
     return sizeof(PathState) + sizeof(IndependentSampler) + sizeof(Hit) + sizeof(ShadowRay) +
            6 * sizeof(uint32_t);
 }
@@ -42,7 +42,7 @@ GpuMemoryEstimate estimateGpuMemory(const GpuRenderSizes& s) {
     e.samplePass = samples * sizeof(PixelSample);
     if (s.mode == PathMode::Wavefront) {
         e.pathsInFlight = std::min(samples, std::max<size_t>(s.maxPathsInFlight, 1));
-        e.pathState = e.pathsInFlight * gpuWavefrontBytesPerPath();
+        e.pathState = e.pathsInFlight * wavefrontBytesPerPath();
         // CUB's DeviceSelect temporaries are far below one word per element; plus its counter.
         e.scratch = e.pathsInFlight * sizeof(uint32_t) + (size_t(1) << 20);
     } else {

@@ -43,9 +43,9 @@ struct GpuMemoryEstimate {
     size_t total() const { return scene + bvh + pathState + samplePass + scratch; }
 };
 
-/// Bytes of wavefront state per path on the GPU: PathState, sampler, hit, shadow ray, three
-/// queues, two flag arrays and the compaction output (the CPU wavefront's layout).
-size_t gpuWavefrontBytesPerPath();
+/// Bytes of per-path state the wavefront keeps in flight on any device: PathState, sampler, hit,
+/// shadow ray, three queues, two flag arrays and the compaction output.
+size_t wavefrontBytesPerPath();
 
 /// The estimate for `sizes`: a pure function (no GPU needed), tested on the CPU.
 GpuMemoryEstimate estimateGpuMemory(const GpuRenderSizes& sizes);

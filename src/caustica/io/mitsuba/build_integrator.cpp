@@ -24,7 +24,7 @@ namespace {
 
 /// The caustica integrator a Mitsuba type runs as, or "" when it has none of its own.
 std::string nativeType(const std::string& type) {
-    if (type == "path" || type == "direct" || type == "mlt") return type;
+    if (type == "path" || type == "direct" || type == "mlt" || type == "sppm") return type;
     if (type == "pssmlt") return "mlt";  // Mitsuba 0.6's name; the same parameters
     return {};
 }

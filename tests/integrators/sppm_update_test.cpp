@@ -1,0 +1,141 @@
+// SPPM's pieces (integrators/sppm/): the per-pixel radius and flux update against values computed
+// by hand, the image formula, the fixed point of the deposits, the photons' emitted flux, and
+// the settings refused with file:line (or option) and reason.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "caustica/integrators/integrator_params.h"
+#include "caustica/integrators/sppm/sppm_kernel.h"
+#include "caustica/integrators/sppm/sppm_settings.h"
+#include "caustica/util/error.h"
+
+namespace caustica::test {
+namespace {
+
+TEST(SppmUpdate, RadiusAndFluxAsComputedByHand) {
+    // N = 0, R = 1, τ = 0; M = 3 photons with Phi = (6, 3, 0), α = 2/3:
+    // N' = 0 + 2/3 · 3 = 2, R' = 1 · sqrt(2 / 3), τ' = (0 + Phi) · (R'/R)² = Phi · 2/3.
+    SppmPixel p;
+    p.radius = 1;
+    const double phi[3] = {6, 3, 0};
+    sppmUpdatePixel(p, phi, 3, 2.0 / 3.0);
+    EXPECT_DOUBLE_EQ(p.n, 2.0);
+    EXPECT_DOUBLE_EQ(p.radius, std::sqrt(2.0 / 3.0));
+    EXPECT_DOUBLE_EQ(p.tau[0], 4.0);
+    EXPECT_DOUBLE_EQ(p.tau[1], 2.0);
+    EXPECT_DOUBLE_EQ(p.tau[2], 0.0);
+    // Second iteration: M = 1, Phi = (1, 1, 1): N' = 2 + 2/3 = 8/3, R'² = R² · (8/3) / 3 = 2/3 · 8/9
+    // = 16/27, τ' = (τ + 1) · (8/9): (40/9, 3 · 8/9, 8/9).
+    const double phi2[3] = {1, 1, 1};
+    sppmUpdatePixel(p, phi2, 1, 2.0 / 3.0);
+    EXPECT_DOUBLE_EQ(p.n, 8.0 / 3.0);
+    EXPECT_NEAR(p.radius * p.radius, 16.0 / 27.0, 1e-15);
+    EXPECT_NEAR(p.tau[0], 40.0 / 9.0, 1e-14);
+    EXPECT_NEAR(p.tau[1], 24.0 / 9.0, 1e-14);
+    EXPECT_NEAR(p.tau[2], 8.0 / 9.0, 1e-14);
+}
+
+TEST(SppmUpdate, NoPhotonsChangeNothingAndAlphaOneKeepsTheRadius) {
+    SppmPixel p;
+    p.radius = 0.5;
+    p.n = 7;
+    p.tau[0] = 3;
+    const double zero[3] = {0, 0, 0};
+    sppmUpdatePixel(p, zero, 0, 0.5);
+    EXPECT_EQ(p.radius, 0.5);
+    EXPECT_EQ(p.n, 7);
+    EXPECT_EQ(p.tau[0], 3);
+    const double phi[3] = {2, 0, 0};
+    sppmUpdatePixel(p, phi, 4, 1.0);  // α = 1: every photon kept, plain PPM density estimate
+    EXPECT_DOUBLE_EQ(p.radius, 0.5);
+    EXPECT_DOUBLE_EQ(p.n, 11);
+    EXPECT_DOUBLE_EQ(p.tau[0], 5);
+}
+
+TEST(SppmUpdate, ImageIsDirectMeanPlusFluxOverPhotonsTimesDiscArea) {
+    SppmPixel p;
+    p.ld[0] = 8;  // over 4 iterations: 2
+    p.tau[0] = 3.0 * 3.14159265358979323846;
+    p.radius = 0.5;  // π R² = π / 4
+    double L[3];
+    sppmPixelRadiance(p, 4, 3, L);  // τ / (4 · 3 · π/4) = 3π / (3π) = 1
+    EXPECT_DOUBLE_EQ(L[0], 3.0);
+    EXPECT_DOUBLE_EQ(L[1], 0.0);
+}
+
+TEST(SppmFixedPointTest, RoundsNonNegativeValuesAndDropsInvalidOnes) {
+    SppmFixedPoint f;
+    f.scale = 4294967296.0;  // Φmax = 1
+    EXPECT_EQ(f.toUnits(1.0f), 4294967296ull);
+    EXPECT_EQ(f.toUnits(0.5f), 2147483648ull);
+    EXPECT_EQ(f.toUnits(-1.0f), 0u);
+    EXPECT_EQ(f.toUnits(std::nanf("")), 0u);
+    EXPECT_EQ(f.toUnits(1e30f), 4503599627370496ull);  // clamped to 2^52 units
+    EXPECT_DOUBLE_EQ(f.toValue(f.toUnits(0.25f)), 0.25);
+}
+
+IntegratorSpec sppmSpec(std::initializer_list<std::pair<const char*, const char*>> floats) {
+    IntegratorSpec spec;
+    spec.type = "sppm";
+    spec.where = "scene.xml:3";
+    int line = 4;
+    for (const auto& [name, text] : floats) {
+        IntegratorParam p;
+        p.name = name;
+        p.kind = IntegratorParam::Kind::Float;
+        p.text = text;
+        p.where = "scene.xml:" + std::to_string(line++);
+        spec.params.push_back(p);
+    }
+    return spec;
+}
+
+std::string refusal(const IntegratorSpec& spec) {
+    IntegratorParams params(spec);
+    try {
+        readSppmSettings(params);
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(SppmSettingsTest, DefaultsAndValues) {
+    IntegratorParams none(sppmSpec({}));
+    const SppmSettings d = readSppmSettings(none);
+    EXPECT_EQ(d.photonCount, uint64_t(1) << 17);
+    EXPECT_FLOAT_EQ(d.alpha, 2.0f / 3.0f);
+    EXPECT_EQ(d.initialRadius, 0);
+    EXPECT_EQ(d.path.maxDepth, -1);
+    EXPECT_EQ(d.path.rrDepth, 5);
+    IntegratorParams some(sppmSpec({{"alpha", "1"}, {"initial_radius", "0.25"}}));
+    const SppmSettings s = readSppmSettings(some);
+    EXPECT_EQ(s.alpha, 1.0f);
+    EXPECT_EQ(s.initialRadius, 0.25f);
+}
+
+TEST(SppmSettingsTest, BadValuesAreRefusedWithFileLineAndReason) {
+    EXPECT_EQ(refusal(sppmSpec({{"alpha", "0"}})), "scene.xml:4: integrator 'sppm': parameter 'alpha' must be in (0, 1]");
+    EXPECT_EQ(refusal(sppmSpec({{"alpha", "1.5"}})),
+              "scene.xml:4: integrator 'sppm': parameter 'alpha' must be in (0, 1]");
+    EXPECT_EQ(refusal(sppmSpec({{"initial_radius", "-0.1"}})),
+              "scene.xml:4: integrator 'sppm': parameter 'initial_radius' must be >= 0 (0: from the scene's size and "
+              "resolution)");
+    IntegratorSpec zero = sppmSpec({});
+    zero.params.push_back({"photon_count", IntegratorParam::Kind::Integer, "0", "scene.xml:9"});
+    EXPECT_EQ(refusal(zero),
+              "scene.xml:9: integrator 'sppm': parameter 'photon_count' must be a whole number of photons in [1, 2^30]");
+    // The command line's option names itself.
+    IntegratorParams cli(sppmSpec({}), {{"alpha", IntegratorParam::Kind::Text, "-1", "--sppm-alpha"}});
+    try {
+        readSppmSettings(cli);
+        FAIL() << "accepted";
+    } catch (const Error& e) {
+        EXPECT_EQ(std::string(e.what()), "--sppm-alpha -1: must be in (0, 1]");
+    }
+}
+
+}  // namespace
+}  // namespace caustica::test

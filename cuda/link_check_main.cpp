@@ -7,7 +7,7 @@
 #include "cuda/cuda_backend.h"
 
 int main() {
-    // The GPU's instantiations of the single-source drivers (cuda/drivers.cu).
+    // The GPU's instantiations of the single-source drivers (cuda/*_driver.cu).
     auto path = &caustica::makePathPass<caustica::GpuExec>;
     auto direct = &caustica::makeDirectPass<caustica::GpuExec>;
     caustica::registerCudaBackend();  // installs function pointers only; touches no GPU

@@ -1,6 +1,6 @@
 // pass_driver.h — the drivers of the integrators that render by passes of K samples per pixel
 // (path, direct). Each is written once against launch.h and compiled per device: g++ builds the
-// CPU's, nvcc (cuda/drivers.cu) the GPU's, from the same .cpp. A pass's samples end in host
+// CPU's, nvcc (cuda/*_driver.cu) the GPU's, from the same .cpp. A pass's samples end in host
 // memory, where the Film accumulates them.
 #pragma once
 

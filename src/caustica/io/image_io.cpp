@@ -128,6 +128,33 @@ int64_t exrFixedAttributeSize(const std::string& type) {
     return -1;
 }
 
+/// Scan lines per chunk for an EXR compression method (Imf::Compression's values); 256, the most,
+/// for values OpenEXR does not know (it refuses them), so that chunk counts stay lower bounds.
+uint64_t exrLinesPerChunk(int compression) {
+    switch (compression) {
+        case Imf::NO_COMPRESSION:
+        case Imf::RLE_COMPRESSION:
+        case Imf::ZIPS_COMPRESSION:
+            return 1;
+        case Imf::ZIP_COMPRESSION:
+        case Imf::PXR24_COMPRESSION:
+            return 16;
+        case Imf::PIZ_COMPRESSION:
+        case Imf::B44_COMPRESSION:
+        case Imf::B44A_COMPRESSION:
+        case Imf::DWAA_COMPRESSION:
+            return 32;
+        default:
+            return 256;  // DWAB
+    }
+}
+
+/// The most bytes one uncompressed EXR chunk (lines per chunk x bytes per line, or a tile) may
+/// hold: OpenEXR allocates buffers of that size, several, on opening a file, and a few header
+/// bytes can claim any width (found by fuzzing: an 8386820 x 3 window of 3 half channels, within
+/// kMaxImagePixels, made it allocate 800 MB buffers). Generous: 16 lines of 4 floats, 2^20 wide.
+constexpr double kMaxExrChunkBytes = 256.0 * 1024 * 1024;
+
 /// Where an EXR file's header(s) end (its first chunk offset table starts there), and whether
 /// it is a multi-part file.
 struct ExrLayout {
@@ -138,6 +165,10 @@ struct ExrLayout {
 /// Walks the EXR header(s) before OpenEXR sees the file: OpenEXR allocates an attribute's value
 /// with the size the file claims before reading it, so a few bytes claiming a 2 GB attribute
 /// would cost 2 GB. Refuses attributes larger than what is left of the file (found by fuzzing).
+/// Opening a file also sizes tables and buffers by the data window (found by fuzzing: a
+/// 591-byte file with an 8847364 x 513 window cost seconds), so before OpenEXR opens it the
+/// window must pass checkSize, its chunks' offset table must fit in the file, and one chunk (what
+/// OpenEXR's line buffer and decompressor hold) must stay within kMaxExrChunkBytes.
 ExrLayout checkExrHeader(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error(path, 0, "cannot open file for reading (missing or unreadable)");
@@ -149,7 +180,8 @@ ExrLayout checkExrHeader(const std::string& path) {
         throw Error(path, 0, "corrupt header: the file is too short to be an EXR image");
     if (head[0] != 0x76 || head[1] != 0x2f || head[2] != 0x31 || head[3] != 0x01)
         throw Error(path, 0, "corrupt header: not an OpenEXR file (bad magic number)");
-    const bool multipart = (head[5] & 0x10) != 0;  // version flags, bit 12
+    const bool multipart = (head[5] & 0x10) != 0;    // version flags, bit 12
+    const bool singleTiled = (head[5] & 0x02) != 0;  // bit 9 (multi-part files: 'tiles' says)
     auto readName = [&](std::string& out) {
         out.clear();
         for (char c; in.get(c);) {
@@ -160,12 +192,27 @@ ExrLayout checkExrHeader(const std::string& path) {
         throw Error(path, 0, "truncated header");
     };
     std::string name, type;
+    uint64_t chunks = 0;  // a lower bound on the chunk offsets of the parts read so far
+    auto layout = [&](bool multi) {
+        const uint64_t end = uint64_t(in.tellg());
+        if (chunks > (fileSize - std::min(end, fileSize)) / 8)
+            throw Error(path, 0,
+                        "corrupt or truncated data: the header needs a table of " +
+                            std::to_string(chunks) + " chunk offsets, more than the file holds");
+        return ExrLayout{end, multi};
+    };
     for (bool firstHeader = true;; firstHeader = false) {
         readName(name);
         if (name.empty()) {
             if (firstHeader) throw Error(path, 0, "corrupt header: empty header");
-            return {uint64_t(in.tellg()), true};  // the empty header ending a multi-part list
+            return layout(true);  // the empty header ending a multi-part list
         }
+        // What OpenEXR sizes its tables by (its defaults: a 64 x 64 window, ZIP compression).
+        int32_t window[4] = {0, 0, 63, 63};
+        int compression = Imf::ZIP_COMPRESSION;
+        uint32_t tile[2] = {0, 0};  // tiled parts: tile width and height
+        int64_t chunkCount = 0;
+        std::vector<std::pair<int, int32_t>> pixelBytes;  // per channel: bytes, x sampling
         for (; !name.empty(); readName(name)) {
             readName(type);
             unsigned char sz[4];
@@ -178,10 +225,16 @@ ExrLayout checkExrHeader(const std::string& path) {
                                 std::to_string(size) + " bytes, more than the file holds");
             // OpenEXR reads fixed-size types and channel lists by their type, not by `size`:
             // follow it so that this walk stays where OpenEXR is.
-            if (type == "chlist") {
+            if (type == "chlist") {  // name, then pixel type, flags, x and y sampling
                 std::string channel;
-                for (readName(channel); !channel.empty(); readName(channel))
-                    in.seekg(16, std::ios::cur);
+                pixelBytes.clear();
+                for (readName(channel); !channel.empty(); readName(channel)) {
+                    unsigned char c[16];
+                    if (!in.read(reinterpret_cast<char*>(c), 16))
+                        throw Error(path, 0, "truncated header");
+                    pixelBytes.push_back(
+                        {readLe32(c) == Imf::HALF ? 2 : 4, std::max(int32_t(readLe32(c + 8)), 1)});
+                }
                 continue;
             }
             auto readU32 = [&] {
@@ -209,9 +262,48 @@ ExrLayout checkExrHeader(const std::string& path) {
                 continue;
             }
             const int64_t fixed = exrFixedAttributeSize(type);
+            if (fixed > 0 && fixed <= 16) {  // small fixed-size values: read, keep those above
+                unsigned char v[16];
+                if (!in.read(reinterpret_cast<char*>(v), fixed))
+                    throw Error(path, 0, "truncated header");
+                if (name == "dataWindow" && type == "box2i")
+                    for (int k = 0; k < 4; ++k) window[k] = int32_t(readLe32(v + 4 * k));
+                else if (name == "compression" && type == "compression")
+                    compression = v[0];
+                else if (name == "tiles" && type == "tiledesc")
+                    tile[0] = readLe32(v), tile[1] = readLe32(v + 4);
+                else if (name == "chunkCount" && type == "int")
+                    chunkCount = std::max(int32_t(readLe32(v)), 0);
+                continue;
+            }
             in.seekg(fixed >= 0 ? fixed : size, std::ios::cur);
         }
-        if (!multipart) return {uint64_t(in.tellg()), false};
+        const int64_t w = int64_t(window[2]) - window[0] + 1,
+                      h = int64_t(window[3]) - window[1] + 1;
+        checkSize(path, w, h);
+        const bool tiled = tile[0] && tile[1] && (multipart || singleTiled);
+        double lineBytes = 0;  // of a chunk's width: the data window's, or a tile's
+        for (const auto& [bytes, xSampling] : pixelBytes)
+            lineBytes += double(bytes) * std::ceil(double(tiled ? tile[0] : w) / xSampling);
+        const double chunkBytes =
+            lineBytes * (tiled ? double(tile[1]) : double(exrLinesPerChunk(compression)));
+        if (chunkBytes > kMaxExrChunkBytes)
+            throw Error(path, 0,
+                        "corrupt header: one chunk of the image (" +
+                            (tiled ? "a tile of " + std::to_string(tile[0]) + " x " +
+                                         std::to_string(tile[1]) + " pixels"
+                                   : std::to_string(exrLinesPerChunk(compression)) +
+                                         " scan lines " + std::to_string(w) + " pixels wide") +
+                            ") would take " + std::to_string(int64_t(chunkBytes / 1048576)) +
+                            " MiB, more than the 256 MiB caustica reads");
+        // Scan lines: one offset per chunk of lines; tiles: at least those of level 0. OpenEXR
+        // allocates both this and the chunkCount it is given, so the larger must fit.
+        const uint64_t perWindow =
+            tiled
+                ? ((uint64_t(w) + tile[0] - 1) / tile[0]) * ((uint64_t(h) + tile[1] - 1) / tile[1])
+                : (uint64_t(h) + exrLinesPerChunk(compression) - 1) / exrLinesPerChunk(compression);
+        chunks += std::max(perWindow, uint64_t(chunkCount));
+        if (!multipart) return layout(false);
     }
 }
 
@@ -227,24 +319,7 @@ uint64_t exrChunkCount(const std::string& path, const Imf::Header& header) {
                     n += uint64_t(tiled.numXTiles(lx)) * uint64_t(tiled.numYTiles(ly));
         return n;
     }
-    uint64_t lines = 1;  // scan lines per chunk
-    switch (header.compression()) {
-        case Imf::ZIP_COMPRESSION:
-        case Imf::PXR24_COMPRESSION:
-            lines = 16;
-            break;
-        case Imf::PIZ_COMPRESSION:
-        case Imf::B44_COMPRESSION:
-        case Imf::B44A_COMPRESSION:
-        case Imf::DWAA_COMPRESSION:
-            lines = 32;
-            break;
-        case Imf::DWAB_COMPRESSION:
-            lines = 256;
-            break;
-        default:
-            break;
-    }
+    const uint64_t lines = exrLinesPerChunk(header.compression());
     const Imath::Box2i dw = header.dataWindow();
     return (uint64_t(int64_t(dw.max.y) - dw.min.y + 1) + lines - 1) / lines;
 }
@@ -417,7 +492,8 @@ Image readPfm(const std::string& path) {
     const double w = number(token("width"), "width"), h = number(token("height"), "height");
     const double scale = number(token("scale"), "scale");
     ++pos;  // the single whitespace character before the raster
-    if (w != std::floor(w) || h != std::floor(h) || w > 1e9 || h > 1e9)
+    // In range before the conversions below (found by fuzzing: a height of -5.2e29).
+    if (w != std::floor(w) || h != std::floor(h) || w < 0 || h < 0 || w > 1e9 || h > 1e9)
         throw Error(path, 0, "corrupt header: bad image size");
     checkSize(path, int64_t(w), int64_t(h));
     if (scale == 0) throw Error(path, 0, "corrupt header: scale must not be 0");
@@ -547,6 +623,87 @@ void forEachPngChunk(const std::string& path, const Bytes& data, F&& f) {
 
 /// PNG or JPEG (`format`; 8 or 16 bits per channel, sRGB-encoded) via stb; decoded to linear
 /// unless `raw`.
+/// Walks a JPEG's marker segments where stb_image reads them and refuses what this stb (Debian's
+/// libstb 0.0~git20220908, not instrumented) would read or write out of bounds or uninitialised:
+/// a Huffman table of more than 256 symbols (stb fills arrays of 256), and a scan using a Huffman
+/// or quantisation table that no DHT or DQT segment defined before it (found by fuzzing: stb
+/// decoded with the garbage its malloc held, and an assertion in stbi__jpeg_huff_decode aborted).
+/// Where stb would refuse the file anyway the walk stops and leaves the refusal to stb.
+void checkJpegTables(const std::string& path, const Bytes& data) {
+    auto at = [&](size_t i) -> int { return i < data.size() ? data[i] : 0; };  // stb reads 0 at EOF
+    bool dc[4] = {}, ac[4] = {}, quant[4] = {};
+    int progressive = -1;                    // until the frame header (SOF0/1: 0, SOF2: 1)
+    std::vector<std::pair<int, int>> comps;  // the frame's components: id, quantisation table
+    auto refuse = [&](const std::string& what) {
+        throw Error(path, 0, "corrupt data: JPEG " + what);
+    };
+    for (size_t pos = 2; pos < data.size();) {  // after SOI
+        if (data[pos] != 0xff) {  // stb skips bytes up to a marker (or refuses the file)
+            ++pos;
+            continue;
+        }
+        while (pos < data.size() && data[pos] == 0xff) ++pos;  // fill bytes
+        const int m = at(pos);
+        const size_t seg = pos + 1, len = size_t(at(seg) << 8 | at(seg + 1));  // len counts itself
+        if (m == 0xc4 || m == 0xdb) {  // DHT, DQT: tables until the length is used up, as stb
+            for (long left = long(len) - 2, p = long(seg) + 2; left > 0;) {
+                const int q = at(size_t(p)), hi = q >> 4, t = q & 15;
+                if (hi > 1 || t > 3) return;
+                long size = 1 + (hi ? 128 : 64);
+                if (m == 0xc4) {
+                    long n = 0;
+                    for (int i = 1; i <= 16; ++i) n += at(size_t(p + i));
+                    if (n > 256)
+                        refuse("Huffman table with " + std::to_string(n) +
+                               " symbols (at most 256)");
+                    (hi ? ac : dc)[t] = true;
+                    size = 17 + n;
+                } else {
+                    quant[t] = true;
+                }
+                p += size;
+                left -= size;
+            }
+        } else if (m == 0xc0 || m == 0xc1 || m == 0xc2) {  // the frame (a second one: stb refuses)
+            if (progressive >= 0) return;
+            progressive = m == 0xc2;
+            for (int i = 0, n = at(seg + 7); i < n; ++i)
+                comps.push_back({at(seg + 8 + 3 * size_t(i)), at(seg + 10 + 3 * size_t(i))});
+        } else if (m == 0xda) {  // a scan: the tables it decodes with must be defined by now
+            if (progressive < 0) return;
+            const int n = at(seg + 2), spectralStart = at(seg + 3 + 2 * size_t(n));
+            for (int i = 0; i < n; ++i) {
+                const int id = at(seg + 3 + 2 * size_t(i)), t = at(seg + 4 + 2 * size_t(i));
+                const auto c = std::find_if(comps.begin(), comps.end(),
+                                            [&](const auto& c) { return c.first == id; });
+                if (c == comps.end() || c->second > 3 || t >> 4 > 3 || (t & 15) > 3) return;
+                if (!quant[c->second])
+                    refuse("scan uses quantisation table " + std::to_string(c->second) +
+                           ", which no DQT segment defines before it");
+                if ((!progressive || spectralStart == 0) && !dc[t >> 4])
+                    refuse("scan uses DC Huffman table " + std::to_string(t >> 4) +
+                           ", which no DHT segment defines before it");
+                if ((!progressive || spectralStart > 0) && !ac[t & 15])
+                    refuse("scan uses AC Huffman table " + std::to_string(t & 15) +
+                           ", which no DHT segment defines before it");
+            }
+            // The entropy-coded data runs to the next marker other than 0xff00 (a stuffed 0xff)
+            // or a restart marker.
+            for (pos = seg + len; pos < data.size(); ++pos) {
+                if (data[pos] != 0xff) continue;
+                size_t q = pos + 1;
+                while (q < data.size() && data[q] == 0xff) ++q;
+                if (q < data.size() && data[q] != 0 && (data[q] < 0xd0 || data[q] > 0xd7)) break;
+                pos = q;
+            }
+            continue;
+        } else if (!(m >= 0xe0 && m <= 0xef) && m != 0xfe && m != 0xdd && m != 0xdc) {
+            return;  // end of image, or a marker stb refuses (SOF3 and up, restart outside a scan)
+        }
+        pos = seg + len;  // stb reads each segment to the end its length gives, or refuses it
+    }
+}
+
 Image readLdr(const std::string& path, Format format, const ImageReadOptions& options,
               ImageFileInfo* info) {
     const Bytes data = readFile(path);
@@ -556,6 +713,8 @@ Image readLdr(const std::string& path, Format format, const ImageReadOptions& op
     } else if (data.size() < kJpegMagic.size() ||
                !std::equal(kJpegMagic.begin(), kJpegMagic.end(), data.begin())) {
         throw Error(path, 0, "corrupt header: not a JPEG file");
+    } else {
+        checkJpegTables(path, data);
     }
     const int size = int(data.size());
     int w = 0, h = 0, n = 0;

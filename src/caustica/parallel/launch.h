@@ -1,5 +1,5 @@
 // launch.h — single-source drivers: the device as a type, so that one driver text compiles for
-// the CPU (g++, caustica_integrators) and for the GPU (nvcc: cuda/drivers.cu includes the same
+// the CPU (g++, caustica_integrators) and for the GPU (nvcc: cuda/*_driver.cu includes the same
 // .cpp files, pbrt-v4's way).
 //
 //     template <class Exec> void shade(Exec exec, float* out, size_t n) {

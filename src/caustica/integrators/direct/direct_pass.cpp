@@ -1,5 +1,5 @@
 // direct_pass.cpp — the direct-lighting integrator's pass driver for the device this file is
-// compiled for (launch.h: g++ makes the CPU's; cuda/drivers.cu includes this file for nvcc).
+// compiled for (launch.h: g++ makes the CPU's; cuda/*_driver.cu includes this file for nvcc).
 #include <memory>
 
 #include "caustica/integrators/direct/direct_kernel.h"

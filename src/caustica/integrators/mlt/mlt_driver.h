@@ -1,7 +1,7 @@
 // mlt_driver.h — the one driver of many-chain PSSMLT, for every device: bootstrap, proposals,
 // chain advance, splats (atomic or sorted), Morton sorting of the chains, develop and
 // checkpoints, written once against launch.h. Templates only: mlt_driver.cpp instantiates them
-// for the device it is compiled for (g++: CPU; nvcc through cuda/drivers.cu: GPU).
+// for the device it is compiled for (g++: CPU; nvcc through cuda/*_driver.cu: GPU).
 //
 // What differs between devices is data, not logic: the chain store's layout (chain-major on the
 // CPU, where a chain's coordinates share cache lines; dimension-major on a GPU, where a warp's

@@ -1,5 +1,5 @@
 // path_pass.cpp — the path tracer's pass driver for the device this file is compiled for (launch.h:
-// g++ makes the CPU's; cuda/drivers.cu includes this file so that nvcc makes the GPU's).
+// g++ makes the CPU's; cuda/*_driver.cu includes this file so that nvcc makes the GPU's).
 #include <memory>
 
 #include "caustica/integrators/megakernel_pass.h"

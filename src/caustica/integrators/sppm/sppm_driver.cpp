@@ -1,5 +1,5 @@
 // sppm_driver.cpp — the SPPM driver (sppm_driver.h) for the device this file is compiled for
-// (launch.h: g++ makes the CPU's; cuda/drivers.cu includes this file so that nvcc makes the GPU's).
+// (launch.h: g++ makes the CPU's; cuda/*_driver.cu includes this file so that nvcc makes the GPU's).
 #include "caustica/integrators/sppm/sppm_driver.h"
 
 #include <memory>

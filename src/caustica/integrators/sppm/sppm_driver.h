@@ -5,7 +5,7 @@
 // point, integer atomics), per-pixel update. The formulas are in sppm_kernel.h.
 //
 // sppm_driver.cpp defines makeSppmDriver<DriverExec>: g++ compiles it for the CPU and
-// cuda/drivers.cu includes it so that nvcc compiles it for the GPU.
+// cuda/*_driver.cu includes it so that nvcc compiles it for the GPU.
 #pragma once
 
 #include <chrono>

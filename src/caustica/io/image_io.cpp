@@ -404,6 +404,10 @@ Image readExr(const std::string& path) {
             names += std::string(names.empty() ? "" : ", ") + it.name();
         throw Error(path, 0, "no R, G, B or Y channels (found: " + names + ")");
     }
+    // Before the image is allocated (found by fuzzing: a 434-byte file without its chunks made it
+    // allocate and clear 1.7 GB for a 262148 x 549 window).
+    if (!file.isComplete()) throw Error(path, 0, "truncated data: the file is incomplete");
+    checkExrChunks(path, exrPartHeaders(path, file, layout), layout);
     Image image{int(w), int(h)};
     Imf::FrameBuffer fb;
     const size_t xs = 3 * sizeof(float);
@@ -416,8 +420,6 @@ Image readExr(const std::string& path) {
         fb.insert("Y", Imf::Slice::Make(Imf::FLOAT, base, dw, xs, xs * size_t(w)));
     }
     file.setFrameBuffer(fb);
-    if (!file.isComplete()) throw Error(path, 0, "truncated data: the file is incomplete");
-    checkExrChunks(path, exrPartHeaders(path, file, layout), layout);
     file.readPixels(dw.min.y, dw.max.y);
     if (!rgb)
         for (size_t i = 0; i < image.pixelCount(); ++i)
@@ -628,12 +630,20 @@ void forEachPngChunk(const std::string& path, const Bytes& data, F&& f) {
 /// a Huffman table of more than 256 symbols (stb fills arrays of 256), and a scan using a Huffman
 /// or quantisation table that no DHT or DQT segment defined before it (found by fuzzing: stb
 /// decoded with the garbage its malloc held, and an assertion in stbi__jpeg_huff_decode aborted).
+/// It also refuses a scan whose data cannot hold its blocks (a baseline block takes at least 2
+/// bits, a first DC scan's 1): stb decodes what is missing as zeros, so 24 bytes could make it
+/// decode a 13156 x 4214 image (found by fuzzing: a 5 s timeout under ASan).
 /// Where stb would refuse the file anyway the walk stops and leaves the refusal to stb.
 void checkJpegTables(const std::string& path, const Bytes& data) {
     auto at = [&](size_t i) -> int { return i < data.size() ? data[i] : 0; };  // stb reads 0 at EOF
     bool dc[4] = {}, ac[4] = {}, quant[4] = {};
-    int progressive = -1;                    // until the frame header (SOF0/1: 0, SOF2: 1)
-    std::vector<std::pair<int, int>> comps;  // the frame's components: id, quantisation table
+    int progressive = -1;  // until the frame header (SOF0/1: 0, SOF2: 1)
+    struct Component {
+        int id, h, v, quant;  // id, sampling factors, quantisation table
+    };
+    std::vector<Component> comps;  // the frame's
+    uint64_t width = 0, height = 0;
+    int hMax = 1, vMax = 1;
     auto refuse = [&](const std::string& what) {
         throw Error(path, 0, "corrupt data: JPEG " + what);
     };
@@ -667,18 +677,36 @@ void checkJpegTables(const std::string& path, const Bytes& data) {
         } else if (m == 0xc0 || m == 0xc1 || m == 0xc2) {  // the frame (a second one: stb refuses)
             if (progressive >= 0) return;
             progressive = m == 0xc2;
-            for (int i = 0, n = at(seg + 7); i < n; ++i)
-                comps.push_back({at(seg + 8 + 3 * size_t(i)), at(seg + 10 + 3 * size_t(i))});
+            height = uint64_t(at(seg + 3) << 8 | at(seg + 4));
+            width = uint64_t(at(seg + 5) << 8 | at(seg + 6));
+            for (int i = 0, n = at(seg + 7); i < n; ++i) {
+                const size_t c = seg + 8 + 3 * size_t(i);
+                const int h = at(c + 1) >> 4, v = at(c + 1) & 15;
+                if (h < 1 || h > 4 || v < 1 || v > 4) return;  // stb refuses these
+                comps.push_back({at(c), h, v, at(c + 2)});
+                hMax = std::max(hMax, h);
+                vMax = std::max(vMax, v);
+            }
         } else if (m == 0xda) {  // a scan: the tables it decodes with must be defined by now
             if (progressive < 0) return;
             const int n = at(seg + 2), spectralStart = at(seg + 3 + 2 * size_t(n));
+            const bool firstDc = spectralStart == 0 && at(seg + 5 + 2 * size_t(n)) >> 4 == 0;
+            auto blocksAcross = [](uint64_t pixels, int f, int fMax) {
+                return ((pixels * uint64_t(f) + uint64_t(fMax) - 1) / uint64_t(fMax) + 7) / 8;
+            };
+            const uint64_t mcus = blocksAcross(width, 1, hMax) * blocksAcross(height, 1, vMax);
+            uint64_t blocks = 0;
             for (int i = 0; i < n; ++i) {
                 const int id = at(seg + 3 + 2 * size_t(i)), t = at(seg + 4 + 2 * size_t(i));
                 const auto c = std::find_if(comps.begin(), comps.end(),
-                                            [&](const auto& c) { return c.first == id; });
-                if (c == comps.end() || c->second > 3 || t >> 4 > 3 || (t & 15) > 3) return;
-                if (!quant[c->second])
-                    refuse("scan uses quantisation table " + std::to_string(c->second) +
+                                            [&](const Component& x) { return x.id == id; });
+                if (c == comps.end() || c->quant > 3 || t >> 4 > 3 || (t & 15) > 3) return;
+                // One component: its own blocks; several: MCUs times each one's h x v blocks.
+                blocks += n == 1
+                              ? blocksAcross(width, c->h, hMax) * blocksAcross(height, c->v, vMax)
+                              : mcus * uint64_t(c->h * c->v);
+                if (!quant[c->quant])
+                    refuse("scan uses quantisation table " + std::to_string(c->quant) +
                            ", which no DQT segment defines before it");
                 if ((!progressive || spectralStart == 0) && !dc[t >> 4])
                     refuse("scan uses DC Huffman table " + std::to_string(t >> 4) +
@@ -696,6 +724,12 @@ void checkJpegTables(const std::string& path, const Bytes& data) {
                 if (q < data.size() && data[q] != 0 && (data[q] < 0xd0 || data[q] > 0xd7)) break;
                 pos = q;
             }
+            const uint64_t bits = 8 * (std::max(pos, seg + len) - (seg + len));
+            const uint64_t bitsPerBlock = !progressive ? 2 : firstDc ? 1 : 0;
+            if (bits < bitsPerBlock * blocks)
+                refuse("scan of " + std::to_string(blocks) + " blocks holds " +
+                       std::to_string(bits / 8) + " bytes, less than " +
+                       std::to_string(bitsPerBlock) + " bits per block (truncated or corrupt)");
             continue;
         } else if (!(m >= 0xe0 && m <= 0xef) && m != 0xfe && m != 0xdd && m != 0xdc) {
             return;  // end of image, or a marker stb refuses (SOF3 and up, restart outside a scan)

@@ -1,7 +1,7 @@
-// End-to-end: caustica's path tracer against reference images rendered by Mitsuba 3 (scalar_rgb,
-// made by scripts/make_references.py). Tolerances come from the noise of both images: per-pixel
-// z-scores with variances estimated from independent renders, a z-test on the image mean, and a
-// relMSE bound of a few times the relMSE the noise alone explains.
+// End-to-end: caustica's path tracer against reference images rendered by Mitsuba 3 (scalar_rgb;
+// glass-caustic: llvm_ad_rgb; made by scripts/make_references.py). Tolerances come from the noise
+// of both images: per-pixel z-scores with variances estimated from independent renders, a z-test
+// on the image mean, and a relMSE bound of a few times the relMSE the noise alone explains.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -50,6 +50,12 @@ TEST(MitsubaReference, CornellWater) {
 TEST(MitsubaReference, DoorGap) {
     // Light only through a narrow gap: the path tracer's noisiest bundled scene.
     checkAgainstReference({"scenes/door-gap/scene.xml", "scenes/door-gap/reference/door-gap-64", 16, 64});
+}
+
+TEST(MitsubaReference, GlassCaustic) {
+    // A glass ball focuses a small light into a one-pixel caustic (at 64x64) inside its shadow;
+    // the small light reaches the rest of the shadow only through the glass (rare paths).
+    checkAgainstReference({"scenes/glass-caustic/scene.xml", "scenes/glass-caustic/reference/glass-caustic-64", 16, 64});
 }
 
 }  // namespace

@@ -32,7 +32,7 @@ double maxRelativeDifference(const Image& a, const Image& b) {
 }
 
 TEST(Wavefront, MatchesTheMegakernelOnTheBundledScenes) {
-    for (const char* name : {"cornell-box", "cornell-water"}) {
+    for (const char* name : {"cornell-box", "cornell-water", "glass-caustic"}) {
         Scene scene = smallScene(name);
         for (AccelKind accel : {AccelKind::Embree, AccelKind::Bvh}) {
             Image mega = renderImage(scene, {4, 5, accel, 0, false});

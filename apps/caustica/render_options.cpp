@@ -59,6 +59,7 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
     // Each integrator's own options set its parameters; checked where the scene's are.
     for (const IntegratorEntry& e : integratorRegistry())
         for (const IntegratorOption& option : e.options) {
+            if (o.integratorOptions.count(option.flag)) continue;  // shared by several (sppm, ppm)
             auto& [param, value] = o.integratorOptions[option.flag];
             param = option.param;
             cmd.add_option(option.flag, value, option.help);

@@ -20,6 +20,22 @@ struct BlockStats {
     double imageMean = 0, imageMeanVar = 0;
 };
 
+/// 2x2 box downsampling: a pixel of the half-size image is the mean of its four (the bundled
+/// scenes' box filter makes a pixel the plain average over its area); with `variance`, the
+/// variances of the means (sum / 16).
+inline Image halveImage(const Image& in, bool variance) {
+    Image out(in.width / 2, in.height / 2);
+    for (int y = 0; y < out.height; ++y)
+        for (int x = 0; x < out.width; ++x)
+            for (int c = 0; c < 3; ++c) {
+                double s = 0;
+                for (int dy = 0; dy < 2; ++dy)
+                    for (int dx = 0; dx < 2; ++dx) s += in.pixel(2 * x + dx, 2 * y + dy)[c];
+                out.pixel(x, y)[c] = float(variance ? s / 16 : s / 4);
+            }
+    return out;
+}
+
 /// Block means of R independent images: their average and the variance of that average.
 inline BlockStats blocksOfRuns(const std::vector<Image>& runs) {
     const int w = runs[0].width, h = runs[0].height, bw = w / kBlock, bh = h / kBlock;

@@ -9,6 +9,7 @@
 #include "caustica/integrators/integrator_params.h"
 #include "caustica/integrators/sppm/sppm_kernel.h"
 #include "caustica/integrators/sppm/sppm_settings.h"
+#include "caustica/scene/bsdf.h"
 #include "caustica/util/error.h"
 
 namespace caustica::test {
@@ -60,7 +61,7 @@ TEST(SppmUpdate, ImageIsDirectMeanPlusFluxOverPhotonsTimesDiscArea) {
     p.tau[0] = 3.0 * 3.14159265358979323846;
     p.radius = 0.5;  // π R² = π / 4
     double L[3];
-    sppmPixelRadiance(p, 4, 3, L);  // τ / (4 · 3 · π/4) = 3π / (3π) = 1
+    sppmPixelRadiance(p, 4, 3, 4, L);  // τ / (4 · 3 · π/4) = 3π / (3π) = 1
     EXPECT_DOUBLE_EQ(L[0], 3.0);
     EXPECT_DOUBLE_EQ(L[1], 0.0);
 }
@@ -121,8 +122,7 @@ TEST(SppmSettingsTest, BadValuesAreRefusedWithFileLineAndReason) {
     EXPECT_EQ(refusal(sppmSpec({{"alpha", "1.5"}})),
               "scene.xml:4: integrator 'sppm': parameter 'alpha' must be in (0, 1]");
     EXPECT_EQ(refusal(sppmSpec({{"initial_radius", "-0.1"}})),
-              "scene.xml:4: integrator 'sppm': parameter 'initial_radius' must be >= 0 (0: from the scene's size and "
-              "resolution)");
+              "scene.xml:4: integrator 'sppm': parameter 'initial_radius' must be >= 0 (0: from the pixel footprint)");
     IntegratorSpec zero = sppmSpec({});
     zero.params.push_back({"photon_count", IntegratorParam::Kind::Integer, "0", "scene.xml:9"});
     EXPECT_EQ(refusal(zero),
@@ -135,6 +135,75 @@ TEST(SppmSettingsTest, BadValuesAreRefusedWithFileLineAndReason) {
     } catch (const Error& e) {
         EXPECT_EQ(std::string(e.what()), "--sppm-alpha -1: must be in (0, 1]");
     }
+}
+
+// Knaus & Zwicker's global schedule: every pixel's radius follows R_{i+1}^2 = R_i^2 (i + a)/(i + 1),
+// photons or none, and tau / (pi R^2) stays the sum of Phi_i / (pi R_i^2).
+TEST(SppmUpdate, GlobalScheduleShrinksEveryPixelAndKeepsTheDensitySum) {
+    SppmPixel p;
+    p.radius = 2;
+    const double phi1[3] = {4, 8, 0}, zero[3] = {0, 0, 0};
+    const double kPi = 3.14159265358979323846;
+    sppmUpdatePixelGlobal(p, phi1, 5, 0.5, 1);  // R^2: 4 -> 4 (1.5 / 2) = 3
+    EXPECT_DOUBLE_EQ(p.radius * p.radius, 3.0);
+    EXPECT_DOUBLE_EQ(p.tau[0] / (kPi * p.radius * p.radius), 4 / (kPi * 4));
+    sppmUpdatePixelGlobal(p, zero, 0, 0.5, 2);  // no photons: shrinks all the same, R^2 = 3 (2.5 / 3) = 2.5
+    EXPECT_DOUBLE_EQ(p.radius * p.radius, 2.5);
+    EXPECT_DOUBLE_EQ(p.tau[1] / (kPi * p.radius * p.radius), 8 / (kPi * 4));
+    const double phi3[3] = {3, 0, 0};
+    sppmUpdatePixelGlobal(p, phi3, 1, 0.5, 3);  // R^2 = 2.5 (3.5 / 4)
+    EXPECT_NEAR(p.radius * p.radius, 2.1875, 1e-12);
+    EXPECT_NEAR(p.tau[0] / (kPi * p.radius * p.radius), 4 / (kPi * 4) + 3 / (kPi * 2.5), 1e-12);
+    EXPECT_EQ(p.n, 6);
+}
+
+TEST(SppmSettingsTest, PhotonMapperChoicesAndTheirRefusals) {
+    IntegratorSpec spec = sppmSpec({{"roughness_threshold", "0.2"}});
+    spec.params.push_back({"radius_schedule", IntegratorParam::Kind::String, "global", "scene.xml:10"});
+    spec.params.push_back({"structure", IntegratorParam::Kind::String, "grid", "scene.xml:11"});
+    spec.params.push_back({"direction", IntegratorParam::Kind::String, "gather", "scene.xml:12"});
+    spec.params.push_back({"max_passes", IntegratorParam::Kind::Integer, "7", "scene.xml:13"});
+    IntegratorParams params(spec);
+    const SppmSettings s = readSppmSettings(params);
+    EXPECT_EQ(s.radiusSchedule, RadiusSchedule::Global);
+    EXPECT_EQ(s.structure, PhotonStructure::Grid);
+    EXPECT_EQ(s.direction, PhotonDirection::Gather);
+    EXPECT_EQ(s.maxPasses, 7u);
+    EXPECT_FLOAT_EQ(s.roughnessThreshold, 0.2f);
+    EXPECT_EQ(refusal(sppmSpec({{"roughness_threshold", "-1"}})),
+              "scene.xml:4: integrator 'sppm': parameter 'roughness_threshold' must be in [0, 1] (a microfacet alpha)");
+    IntegratorSpec bad = sppmSpec({});
+    bad.params.push_back({"structure", IntegratorParam::Kind::String, "octree", "scene.xml:9"});
+    EXPECT_NE(refusal(bad).find("scene.xml:9"), std::string::npos) << refusal(bad);
+    IntegratorSpec ppm = sppmSpec({});
+    ppm.type = "ppm";
+    ppm.params.push_back({"hitpoints", IntegratorParam::Kind::Integer, "0", "scene.xml:9"});
+    IntegratorParams ppmParams(ppm);
+    try {
+        readSppmSettings(ppmParams, PhotonMapper::Ppm);
+        FAIL() << "accepted";
+    } catch (const Error& e) {
+        EXPECT_EQ(std::string(e.what()), "scene.xml:9: integrator 'ppm': parameter 'hitpoints' must be in [1, 256]");
+    }
+}
+
+// Which vertices photon mapping treats as specular (no visible point, no deposit).
+TEST(SppmSpecular, DeltaAlwaysRoughLobesBelowTheThreshold) {
+    std::vector<Bsdf> bsdfs(4);
+    bsdfs[0].type = BsdfType::Diffuse;
+    bsdfs[1].type = BsdfType::Dielectric;
+    bsdfs[2].type = BsdfType::RoughConductor;
+    bsdfs[2].alphaU = bsdfs[2].alphaV = 0.15f;
+    bsdfs[3].type = BsdfType::TwoSided;
+    bsdfs[3].front = bsdfs[3].back = 2;
+    const Span<const Bsdf> view(bsdfs.data(), bsdfs.size());
+    EXPECT_FALSE(isSpecularBsdf(view, 0, 0.5f));
+    EXPECT_TRUE(isSpecularBsdf(view, 1, 0));
+    EXPECT_FALSE(isSpecularBsdf(view, 2, 0));
+    EXPECT_FALSE(isSpecularBsdf(view, 2, 0.1f));
+    EXPECT_TRUE(isSpecularBsdf(view, 2, 0.2f));
+    EXPECT_TRUE(isSpecularBsdf(view, 3, 0.2f));
+    EXPECT_FALSE(isSpecularBsdf(view, 3, 0.1f));
 }
 
 }  // namespace

@@ -45,21 +45,6 @@ Image render(const Scene& scene, const caustica::RenderRequest& request, int thr
     return run();
 }
 
-/// 2x2 box downsampling: a pixel of the half-size image is the mean of its four (the scenes'
-/// box filter makes a pixel the plain average over its area); variances of the mean / 16.
-Image halve(const Image& in, bool variance) {
-    Image out(in.width / 2, in.height / 2);
-    for (int y = 0; y < out.height; ++y)
-        for (int x = 0; x < out.width; ++x)
-            for (int c = 0; c < 3; ++c) {
-                double s = 0;
-                for (int dy = 0; dy < 2; ++dy)
-                    for (int dx = 0; dx < 2; ++dx) s += in.pixel(2 * x + dx, 2 * y + dy)[c];
-                out.pixel(x, y)[c] = float(variance ? s / 16 : s / 4);
-            }
-    return out;
-}
-
 // cornell-box at 32x32 against the 64x64 Mitsuba reference halved (its per-pixel variance
 // halved too). Statistics as the MLT tests (common/block_agreement.h): 8x8-pixel block means per
 // channel, our variance from R = 6 independent runs (seeds), a bound on the mean z^2 and the
@@ -73,8 +58,8 @@ TEST(SppmConvergence, CornellBoxAgreesWithTheReference) {
     const Scene scene =
         loadScene(sourcePath("scenes/cornell-box/scene.xml"), {{"width", "32"}, {"height", "32"}});
     const std::string ref = sourcePath("scenes/cornell-box/reference/cornell-box-64");
-    const Image refMean = halve(readImage(ref + ".exr"), false);
-    const Image refVar = halve(readImage(ref + ".var.exr"), true);
+    const Image refMean = halveImage(readImage(ref + ".exr"), false);
+    const Image refVar = halveImage(readImage(ref + ".var.exr"), true);
     constexpr int kRuns = 6;
     std::vector<Image> runs;
     for (int r = 0; r < kRuns; ++r) runs.push_back(render(scene, sppmRequest(48, 100 + uint64_t(r), "16384", "0.03")));

@@ -21,6 +21,8 @@ const std::vector<IntegratorEntry>& integratorRegistry() {
          describeMlt, makeMltSession},
         {"sppm", "stochastic progressive photon mapping (Hachisuka & Jensen 2009)", sppmOptions(), runsOnGpu,
          describeSppm, makeSppmSession},
+        {"ppm", "progressive photon mapping (Hachisuka et al. 2008): fixed hitpoints, photon passes", ppmOptions(),
+         runsOnGpu, describePpm, makePpmSession},
     };
     return entries;
 }

@@ -58,10 +58,12 @@ std::unique_ptr<IntegratorSession> makePathSession(const SessionContext& context
 std::unique_ptr<IntegratorSession> makeDirectSession(const SessionContext& context);
 std::unique_ptr<IntegratorSession> makeMltSession(const SessionContext& context);
 std::unique_ptr<IntegratorSession> makeSppmSession(const SessionContext& context);
+std::unique_ptr<IntegratorSession> makePpmSession(const SessionContext& context);
 std::string describePath(IntegratorParams& params);
 std::string describeDirect(IntegratorParams& params);
 std::string describeMlt(IntegratorParams& params);
 std::string describeSppm(IntegratorParams& params);
+std::string describePpm(IntegratorParams& params);
 std::string mltGpuRefusal(IntegratorParams& params);
 
 }  // namespace caustica

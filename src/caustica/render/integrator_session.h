@@ -31,6 +31,9 @@ public:
     virtual void step(double samplesLeft) = 0;
     /// Samples (mutations for mlt) per pixel of the whole render so far.
     virtual double samplesPerPixel() const = 0;
+    /// The integrator's own cap on samplesPerPixel() when the request gives no sample count
+    /// (sppm/ppm: max_passes); 0: none (the scene's sample count applies).
+    virtual uint64_t passLimit() const { return 0; }
     /// Whether develop() has an image yet (mlt: after its first iteration).
     virtual bool hasImage() const = 0;
     virtual Image develop() const = 0;

@@ -89,6 +89,10 @@ Renderer::Renderer(Scene scene, const RenderRequest& request, const CheckpointHe
     const SessionContext context{s, *accel_, device_, seed_, request, params,
                                  resumeFrom ? &resumeFrom->identity : nullptr};
     session_ = entry.make(context);
+    // An integrator's own pass count (max_passes) replaces the scene's sample count, and caps a
+    // time budget, unless the request names a sample count.
+    if (request.samplesPerPixel <= 0)
+        if (const uint64_t limit = session_->passLimit(); limit > 0) targetSpp_ = double(limit);
     for (std::string& w : params.unread()) warnings_.push_back(std::move(w));
     for (IdentityEntry& e : session_->parameters()) identity_.push_back(std::move(e));
 }

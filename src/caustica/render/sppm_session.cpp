@@ -1,6 +1,7 @@
-// sppm_session.cpp — the session of stochastic progressive photon mapping: one iteration (eye
-// pass, photon pass, per-pixel update) per step; samples per pixel = iterations; the checkpoint
-// payload is every pixel's statistics and the iteration count (integrators/sppm/sppm_checkpoint.h).
+// sppm_session.cpp — the session of the photon mappers, sppm (stochastic progressive photon
+// mapping) and ppm (progressive photon mapping): one iteration (eye pass — ppm: the first only —,
+// photon pass, update) per step; samples per pixel = iterations; the checkpoint payload is every
+// pixel's (ppm: hitpoint's) statistics and the iteration count (integrators/sppm/sppm_checkpoint.h).
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -16,14 +17,22 @@
 namespace caustica {
 namespace {
 
+/// The settings that change the image. Not among them: structure, direction, morton_order and
+/// sort_photons (the same sums to the bit, so a resume may change them) and max_passes (a budget).
 RenderIdentity sppmIdentity(const SppmSettings& s) {
-    return {identityEntry("max_depth", std::to_string(s.path.maxDepth)),
-            identityEntry("rr_depth", std::to_string(s.path.rrDepth)),
-            identityEntry("hide_emitters", s.path.hideEmitters ? "true" : "false"),
-            identityEntry("photon_count", std::to_string(s.photonCount)),
-            identityEntry("initial_radius", identityNumber(s.initialRadius)),
-            identityEntry("alpha", identityNumber(s.alpha))};
+    RenderIdentity id = {identityEntry("max_depth", std::to_string(s.path.maxDepth)),
+                         identityEntry("rr_depth", std::to_string(s.path.rrDepth)),
+                         identityEntry("hide_emitters", s.path.hideEmitters ? "true" : "false"),
+                         identityEntry("photon_count", std::to_string(s.photonCount)),
+                         identityEntry("initial_radius", identityNumber(s.initialRadius)),
+                         identityEntry("alpha", identityNumber(s.alpha)),
+                         identityEntry("radius_schedule", radiusScheduleName(s.radiusSchedule)),
+                         identityEntry("roughness_threshold", identityNumber(s.roughnessThreshold))};
+    if (s.mapper == PhotonMapper::Ppm) id.push_back(identityEntry("hitpoints", std::to_string(s.hitpoints)));
+    return id;
 }
+
+const char* mapperName(const SppmSettings& s) { return s.mapper == PhotonMapper::Ppm ? "ppm" : "sppm"; }
 
 class SppmSession final : public IntegratorSession {
 public:
@@ -38,6 +47,7 @@ public:
         ++iterationsThisRun_;
     }
     double samplesPerPixel() const override { return double(driver_->stats().iterations); }
+    uint64_t passLimit() const override { return driver_->settings().maxPasses; }
     bool hasImage() const override { return driver_->stats().iterations > 0; }
     Image develop() const override { return driver_->develop(); }
     SessionCounters counters() const override {
@@ -53,22 +63,33 @@ public:
     std::string description() const override {
         const SppmSettings& s = driver_->settings();
         char line[256];
-        std::snprintf(line, sizeof line, "device: %s; integrator sppm, %llu photons/iteration, initial radius %.4g, alpha %.4g",
-                      deviceName(device_.kind), (unsigned long long)s.photonCount, double(s.initialRadius),
-                      double(s.alpha));
-        return line;
+        std::snprintf(line, sizeof line,
+                      "device: %s; integrator %s, %llu photons/iteration, initial radius %.4g, alpha %.4g, %s radius, "
+                      "%s via %s",
+                      deviceName(device_.kind), mapperName(s), (unsigned long long)s.photonCount,
+                      double(s.initialRadius), double(s.alpha), radiusScheduleName(s.radiusSchedule),
+                      photonDirectionName(s.direction), photonStructureName(s.structure));
+        std::string text = line;
+        if (s.mapper == PhotonMapper::Ppm) text += ", " + std::to_string(s.hitpoints) + " hitpoints/pixel";
+        return text;
     }
     void printSummary(std::FILE* out) const override {
         const SppmStats& s = driver_->stats();
         const double photonTime = s.photonSeconds > 0 ? s.photonSeconds : 1e-30;
-        std::fprintf(out, "sppm        %llu iterations, %llu photon paths this run (%.3g/s in the photon pass), "
+        const char* name = mapperName(driver_->settings());
+        std::fprintf(out, "%-11s %llu iterations, %llu photon paths this run (%.3g/s in the photon pass), "
                           "%llu visible points in the last iteration\n",
-                     (unsigned long long)s.iterations, (unsigned long long)s.photonPaths,
+                     name, (unsigned long long)s.iterations, (unsigned long long)s.photonPaths,
                      double(s.photonPaths) / photonTime, (unsigned long long)s.visiblePoints);
-        std::fprintf(out, "sppm radius mean %.4g (initial %.4g); memory %s\n", s.meanRadius,
-                     double(driver_->settings().initialRadius), formatBytes(s.deviceBytes).c_str());
-        std::fprintf(out, "sppm time   eye %.3f s, grid %.3f s, photons %.3f s, update %.3f s\n", s.eyeSeconds,
-                     s.gridSeconds, s.photonSeconds, s.updateSeconds);
+        if (driver_->settings().direction == PhotonDirection::Gather)
+            std::fprintf(out, "%-11s %llu photons stored in the last iteration, %llu passes traced again after an "
+                              "overflow\n",
+                         name, (unsigned long long)s.storedPhotons, (unsigned long long)s.photonRetraces);
+        std::fprintf(out, "%-11s radius mean %.4g (initial %.4g); memory %s (peak %s)\n", name, s.meanRadius,
+                     double(driver_->settings().initialRadius), formatBytes(s.deviceBytes).c_str(),
+                     formatBytes(s.peakBytes).c_str());
+        std::fprintf(out, "%-11s time eye %.3f s, structure %.3f s, photons %.3f s, gather %.3f s, update %.3f s\n",
+                     name, s.eyeSeconds, s.gridSeconds, s.photonSeconds, s.gatherSeconds, s.updateSeconds);
     }
     std::vector<std::pair<std::string, std::string>> statsJson() const override {
         const SppmStats& s = driver_->stats();
@@ -79,6 +100,9 @@ public:
                 {"sppm_visible_points", std::to_string(s.visiblePoints)},
                 {"sppm_mean_radius", identityNumber(s.meanRadius)},
                 {"sppm_device_bytes", std::to_string(s.deviceBytes)},
+                {"sppm_peak_device_bytes", std::to_string(s.peakBytes)},
+                {"sppm_stored_photons", std::to_string(s.storedPhotons)},
+                {"sppm_gather_seconds", identityNumber(s.gatherSeconds)},
                 {"sppm_eye_seconds", identityNumber(s.eyeSeconds)},
                 {"sppm_grid_seconds", identityNumber(s.gridSeconds)},
                 {"sppm_photon_seconds", identityNumber(s.photonSeconds)},
@@ -91,6 +115,7 @@ private:
         const SppmSettings& s = driver_->settings();
         c.width = driver_->width();
         c.height = driver_->height();
+        c.perPixel = driver_->entriesPerPixel();
         c.photonCount = s.photonCount;
         c.alpha = double(s.alpha);
         c.initialRadius = double(s.initialRadius);
@@ -109,14 +134,24 @@ private:
 }  // namespace
 
 std::unique_ptr<IntegratorSession> makeSppmSession(const SessionContext& c) {
-    return std::make_unique<SppmSession>(c, readSppmSettings(c.params));
+    return std::make_unique<SppmSession>(c, readSppmSettings(c.params, PhotonMapper::Sppm));
+}
+std::unique_ptr<IntegratorSession> makePpmSession(const SessionContext& c) {
+    return std::make_unique<SppmSession>(c, readSppmSettings(c.params, PhotonMapper::Ppm));
 }
 
-std::string describeSppm(IntegratorParams& params) {
+namespace {
+std::string describePhotonMapper(IntegratorParams& params, PhotonMapper mapper) {
+    const SppmSettings s = readSppmSettings(params, mapper);
     std::string line;
-    for (const IdentityEntry& e : sppmIdentity(readSppmSettings(params)))
-        line += (line.empty() ? "" : ", ") + e.name + " " + e.value;
-    return line + " (initial_radius 0: 3 x scene diagonal / image size)";
+    for (const IdentityEntry& e : sppmIdentity(s)) line += (line.empty() ? "" : ", ") + e.name + " " + e.value;
+    line += std::string(", structure ") + photonStructureName(s.structure) + ", direction " +
+            photonDirectionName(s.direction) + ", max_passes " + std::to_string(s.maxPasses);
+    return line + " (initial_radius 0: 3 pixel footprints at the median visible-point distance; max_passes 0: the sample count)";
 }
+}  // namespace
+
+std::string describeSppm(IntegratorParams& params) { return describePhotonMapper(params, PhotonMapper::Sppm); }
+std::string describePpm(IntegratorParams& params) { return describePhotonMapper(params, PhotonMapper::Ppm); }
 
 }  // namespace caustica

@@ -483,4 +483,36 @@ CA_HD_INLINE bool isDeltaBsdf(Span<const Bsdf> bsdfs, uint32_t id) {
     return bsdf_detail::compositeIsDelta(bsdfs, bsdf_detail::LeafOps{bsdfs, si}, id);
 }
 
+namespace bsdf_detail {
+/// A leaf that photon mapping treats as a mirror: delta, or a microfacet interface (rough
+/// conductor or dielectric) whose larger untextured roughness alpha is below `threshold`.
+CA_HD_INLINE bool isSpecularLocal(const Bsdf& b, Float threshold) {
+    if (isDeltaLocal(b)) return true;
+    const bool microfacet = b.type == BsdfType::RoughConductor || b.type == BsdfType::RoughDielectric;
+    return microfacet && max(b.alphaU, b.alphaV) < threshold;
+}
+/// isSpecularLocal through the wrappers LeafOps::isDelta looks through (bump/normal map, twosided).
+CA_HD_INLINE bool isSpecularLeaf(Span<const Bsdf> bsdfs, uint32_t id, Float threshold) {
+    if (bsdfs[id].type == BsdfType::BumpMap || bsdfs[id].type == BsdfType::NormalMap) id = bsdfs[id].front;
+    const Bsdf& b = bsdfs[id];
+    if (b.type == BsdfType::TwoSided)
+        return isSpecularLocal(bsdfs[b.front], threshold) && isSpecularLocal(bsdfs[b.back], threshold);
+    return isSpecularLocal(b, threshold);
+}
+}  // namespace bsdf_detail
+
+/// Photon mapping's "specular" vertex (no visible point, no photon deposit; paths go on by
+/// sampling the BSDF): every lobe delta or a microfacet lobe with roughness alpha < threshold.
+/// threshold 0: the delta BSDFs exactly (isDeltaBsdf).
+CA_HD_INLINE bool isSpecularBsdf(Span<const Bsdf> bsdfs, uint32_t id, Float threshold) {
+    if (!(threshold > 0)) return isDeltaBsdf(bsdfs, id);
+    const SurfaceInteraction si{};
+    const bsdf_detail::LeafOps leaf{bsdfs, si};
+    bool specular = true;
+    bsdf_detail::forEachLeaf<true>(bsdfs, leaf, id, false, leaf.normal(), [&](uint32_t l, Float, bool) {
+        specular = specular && bsdf_detail::isSpecularLeaf(bsdfs, l, threshold);
+    });
+    return specular;
+}
+
 }  // namespace caustica

@@ -92,6 +92,52 @@ CA_HD_INLINE Float areaToSolidAngle(Vec3f refP, Vec3f p, Vec3f n, Float area) {
 
 }  // namespace light_detail
 
+/// A point `p` uniform by area on area light `light`'s shape (mesh, cylinder, sphere) with its
+/// front (emitting) unit normal `n`, flip_normals included: density 1 / light.area. Returns false
+/// when the mesh's triangle CDF gives the point no probability.
+CA_HD_INLINE bool sampleAreaLightPosition(const SceneView& scene, const Light& light, Vec2f u,
+                                          Vec3f& p, Vec3f& n) {
+    const Shape& shape = scene.shapes[light.shape];
+    if (shape.type == ShapeType::Mesh) {
+        // Triangle by area (reusing u.x, rescaled, so that u stays stratified), then a uniform
+        // point on it: the area density is 1 / total area.
+        const Span<const float> cdf(scene.lightCdf.data() + light.cdfOffset, light.cdfCount);
+        Float triPdf;
+        const uint32_t tri = sampleDiscreteCdf(cdf, u.x, &triPdf);
+        if (!(triPdf > 0)) return false;
+        const Float lo = tri > 0 ? cdf[tri - 1] : 0.0f;
+        const Float ux = min((u.x - lo) / triPdf, kOneMinusEpsilon);
+        const Vec2f b = sampleUniformTriangle(Vec2f(max(ux, Float(0)), u.y));
+        Hit hit;
+        hit.t = 0;
+        hit.primId = shape.primOffset + tri;
+        hit.b1 = b.x;
+        hit.b2 = b.y;
+        // The same point and front normal as a ray hit would produce (flip_normals included).
+        const SurfaceInteraction si = computeInteraction(scene, Ray{Vec3f(0), Vec3f(0), 0}, hit);
+        p = si.p;
+        n = si.ng;
+        return true;
+    }
+    if (shape.type == ShapeType::Cylinder) {
+        // Uniform by area as Mitsuba's Cylinder::sample_position: height u.x, angle 2π u.y.
+        const Cylinder& c = scene.cylinders[shape.primOffset];
+        SurfaceInteraction si;
+        const Float phi = 2 * kPi * u.y;
+        const Vec3f radial = c.xAxis * std::cos(phi) + cross(c.axis, c.xAxis) * std::sin(phi);
+        si.p = c.base + c.axis * (u.x * c.length) + radial * c.radius;
+        cylinderInteraction(c, shape.flipNormals, si);
+        p = si.p;
+        n = si.ng;
+        return true;
+    }
+    const Sphere& s = scene.spheres[shape.primOffset];
+    const Vec3f outward = sampleUniformSphere(u);
+    p = s.center + outward * s.radius;
+    n = shape.flipNormals ? -outward : outward;
+    return true;
+}
+
 /// Samples a light as seen from `refP`: `uSelect` picks the light, `u` the point on it.
 /// Returns false if there is nothing to sample (no lights, back side, zero pdf).
 CA_HD_INLINE bool sampleLight(const SceneView& scene, Vec3f refP, Float uSelect, Vec2f u,
@@ -151,54 +197,20 @@ CA_HD_INLINE bool sampleLight(const SceneView& scene, Vec3f refP, Float uSelect,
             break;
     }
 
-    // Area light: a point on the shape and its front normal.
+    // Area light: a point on the shape and its front normal; a sphere seen from outside by its
+    // visible cone, anything else uniformly by area.
     const Shape& shape = scene.shapes[light.shape];
-    Float pdf;
-    if (shape.type == ShapeType::Mesh) {
-        // Triangle by area (reusing u.x, rescaled, so that u stays stratified), then a uniform
-        // point on it: the area density is 1 / total area.
-        const Span<const float> cdf(scene.lightCdf.data() + light.cdfOffset, light.cdfCount);
-        Float triPdf;
-        const uint32_t tri = sampleDiscreteCdf(cdf, u.x, &triPdf);
-        if (!(triPdf > 0)) return false;
-        const Float lo = tri > 0 ? cdf[tri - 1] : 0.0f;
-        const Float ux = min((u.x - lo) / triPdf, kOneMinusEpsilon);
-        const Vec2f b = sampleUniformTriangle(Vec2f(max(ux, Float(0)), u.y));
-        Hit hit;
-        hit.t = 0;
-        hit.primId = shape.primOffset + tri;
-        hit.b1 = b.x;
-        hit.b2 = b.y;
-        // The same point and front normal as a ray hit would produce (flip_normals included).
-        const SurfaceInteraction si = computeInteraction(scene, Ray{refP, Vec3f(0), 0}, hit);
-        out.p = si.p;
-        out.n = si.ng;
-        pdf = light_detail::areaToSolidAngle(refP, out.p, out.n, light.area);
-    } else if (shape.type == ShapeType::Cylinder) {
-        // Uniform by area as Mitsuba's Cylinder::sample_position: height u.x, angle 2π u.y.
-        const Cylinder& c = scene.cylinders[shape.primOffset];
-        SurfaceInteraction si;
-        const Float phi = 2 * kPi * u.y;
-        const Vec3f radial = c.xAxis * std::cos(phi) + cross(c.axis, c.xAxis) * std::sin(phi);
-        si.p = c.base + c.axis * (u.x * c.length) + radial * c.radius;
-        cylinderInteraction(c, shape.flipNormals, si);
-        out.p = si.p;
-        out.n = si.ng;
-        pdf = light_detail::areaToSolidAngle(refP, out.p, out.n, light.area);
-    } else {
-        const Sphere& s = scene.spheres[shape.primOffset];
-        Float omc, distC;
+    Float pdf, omc, distC;
+    if (shape.type == ShapeType::Sphere &&
+        light_detail::sphereCone(scene.spheres[shape.primOffset], refP, omc, distC)) {
         Vec3f outward;
-        if (light_detail::sphereCone(s, refP, omc, distC)) {
-            light_detail::sampleSphereCone(s, refP, omc, distC, u, out.p, outward);
-            out.n = shape.flipNormals ? -outward : outward;
-            pdf = dot(out.p - refP, out.n) < 0 ? uniformConePdfOmc(omc) : Float(0);
-        } else {
-            outward = sampleUniformSphere(u);  // inside: uniform by area
-            out.p = s.center + outward * s.radius;
-            out.n = shape.flipNormals ? -outward : outward;
-            pdf = light_detail::areaToSolidAngle(refP, out.p, out.n, light.area);
-        }
+        light_detail::sampleSphereCone(scene.spheres[shape.primOffset], refP, omc, distC, u, out.p,
+                                       outward);
+        out.n = shape.flipNormals ? -outward : outward;
+        pdf = dot(out.p - refP, out.n) < 0 ? uniformConePdfOmc(omc) : Float(0);
+    } else {
+        if (!sampleAreaLightPosition(scene, light, u, out.p, out.n)) return false;
+        pdf = light_detail::areaToSolidAngle(refP, out.p, out.n, light.area);
     }
     if (!(pdf > 0) || !std::isfinite(pdf)) return false;
 

@@ -11,17 +11,24 @@ namespace caustica {
 
 namespace {
 constexpr uint32_t kMagic = 0x4d505053;  // "SPPM"
-constexpr uint32_t kVersion = 1;
+constexpr uint32_t kVersion = 2;  // 2: entries per pixel (ppm hitpoints)
 constexpr const char* kWhat = "sppm checkpoint";
 }  // namespace
 
-Image sppmImage(const std::vector<SppmPixel>& pixels, int width, int height, uint64_t iterations, uint64_t photons) {
+Image sppmImage(const std::vector<SppmPixel>& entries, int width, int height, uint32_t perPixel, uint64_t iterations,
+                uint64_t photons, uint64_t ldCount) {
     Image image(width, height);
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
-            double L[3];
-            sppmPixelRadiance(pixels[size_t(y) * size_t(width) + size_t(x)], iterations, photons, L);
-            image.set(x, y, Spectrum(Float(L[0]), Float(L[1]), Float(L[2])));
+            double sum[3] = {0, 0, 0};
+            const size_t first = (size_t(y) * size_t(width) + size_t(x)) * perPixel;
+            for (uint32_t j = 0; j < perPixel; ++j) {
+                double L[3];
+                sppmPixelRadiance(entries[first + j], iterations, photons, ldCount, L);
+                for (int c = 0; c < 3; ++c) sum[c] += L[c];
+            }
+            const double inv = 1.0 / double(perPixel);
+            image.set(x, y, Spectrum(Float(sum[0] * inv), Float(sum[1] * inv), Float(sum[2] * inv)));
         }
     return image;
 }
@@ -32,6 +39,7 @@ void writeSppmCheckpoint(std::ostream& out, const SppmCheckpoint& c) {
     w.u32(kVersion);
     w.u32(uint32_t(c.width));
     w.u32(uint32_t(c.height));
+    w.u32(c.perPixel);
     w.u64(c.photonCount);
     w.f64(c.alpha);
     w.f64(c.initialRadius);
@@ -47,12 +55,13 @@ SppmCheckpoint readSppmCheckpoint(std::istream& in, const SppmCheckpoint& expect
     SppmCheckpoint c;
     c.width = int(r.u32());
     c.height = int(r.u32());
+    c.perPixel = r.u32();
     c.photonCount = r.u64();
     c.alpha = r.f64();
     c.initialRadius = r.f64();
     c.iterations = r.u64();
     const uint64_t n = r.u64();
-    if (n != uint64_t(c.width) * uint64_t(c.height) || n > (uint64_t(1) << 32))
+    if (n != uint64_t(c.width) * uint64_t(c.height) * c.perPixel || n > (uint64_t(1) << 32))
         throw Error(std::string(kWhat) + ": damaged (pixel count)");
     c.pixels.resize(size_t(n));
     r.bytes(c.pixels.data(), size_t(n) * sizeof(SppmPixel));
@@ -61,6 +70,9 @@ SppmCheckpoint readSppmCheckpoint(std::istream& in, const SppmCheckpoint& expect
         throw Error(std::string(kWhat) + ": image size " + std::to_string(c.width) + "x" + std::to_string(c.height) +
                     " differs from this render's " + std::to_string(expected.width) + "x" +
                     std::to_string(expected.height));
+    if (c.perPixel != expected.perPixel)
+        throw Error(std::string(kWhat) + ": " + std::to_string(c.perPixel) + " hitpoints per pixel differ from " +
+                    std::to_string(expected.perPixel));
     if (c.photonCount != expected.photonCount)
         throw Error(std::string(kWhat) + ": photon_count " + std::to_string(c.photonCount) + " differs from " +
                     std::to_string(expected.photonCount));

@@ -12,10 +12,6 @@ namespace caustica {
 template <>
 std::unique_ptr<SppmDriverBase> makeSppmDriver<DriverExec>(const Scene& scene, const Accel& accel,
                                                            const SppmSettings& settings, uint64_t seed) {
-    for (const Light& light : scene.lights)
-        if (!sppmEmitterSupported(light.type))
-            throw Error("sppm: the scene has a spot, directional or environment emitter, which the photon pass "
-                        "cannot emit from yet; render it with path or mlt");
     if (!(settings.alpha > 0 && settings.alpha <= 1)) throw Error("sppm: alpha must be in (0, 1]");
     if (settings.photonCount == 0 || settings.photonCount > kSppmMaxPhotons)
         throw Error("sppm: photon_count must be in [1, 2^30]");

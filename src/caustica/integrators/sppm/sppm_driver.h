@@ -1,13 +1,22 @@
-// sppm_driver.h — SppmDriver<Exec>: the one SPPM driver for the CPU and the GPU (launch.h). Each
-// iteration: eye pass (one camera path per pixel: Ld, visible points), compaction of the pixels
-// that have a visible point, a spatial hash grid over their spheres (spatial/hash_grid.h, radii =
-// the pixels' current radii, rebuilt every iteration), photon pass (deposits in 64-bit fixed
-// point, integer atomics), per-pixel update. The formulas are in sppm_kernel.h.
+// sppm_driver.h — SppmDriver<Exec>: the one driver of both photon mappers (sppm, ppm) for the CPU
+// and the GPU (launch.h). Each iteration:
+//   eye pass      sppm: one camera path per pixel (Ld, visible points); ppm: only in the first
+//                 iteration, `hitpoints` per pixel, kept for the whole render;
+//   compaction    the entries that have a visible point, optionally in Morton order;
+//   photon pass   direction "deposit": a lookup structure (spatial/) over the visible points'
+//                 spheres (radii = their current radii, rebuilt every iteration), each photon adds
+//                 into the spheres covering it with integer atomics; direction "gather": photons
+//                 stored, optionally sorted by cell (Morton order), a structure over them, each
+//                 visible point sums those within its radius;
+//   update        per entry (radius_schedule local or global).
+// Sums are 64-bit fixed point (sppm_kernel.h), so both directions, every structure and every
+// thread count give the same bits. The formulas are in sppm_kernel.h and sppm_photon.h.
 //
 // sppm_driver.cpp defines makeSppmDriver<DriverExec>: g++ compiles it for the CPU and
 // cuda/*_driver.cu includes it so that nvcc compiles it for the GPU.
 #pragma once
 
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <memory>
@@ -17,13 +26,17 @@
 #include "caustica/accel/device_scene.h"
 #include "caustica/film/image.h"
 #include "caustica/integrators/megakernel_pass.h"
+#include "caustica/integrators/sppm/sppm_checkpoint.h"
 #include "caustica/integrators/sppm/sppm_kernel.h"
+#include "caustica/integrators/sppm/sppm_passes.h"
 #include "caustica/integrators/sppm/sppm_settings.h"
 #include "caustica/parallel/buffer.h"
 #include "caustica/parallel/launch.h"
 #include "caustica/parallel/primitives.h"
 #include "caustica/scene/scene.h"
+#include "caustica/spatial/brute_force.h"
 #include "caustica/spatial/hash_grid.h"
+#include "caustica/spatial/uniform_grid.h"
 
 namespace caustica {
 
@@ -32,9 +45,12 @@ struct SppmStats {
     uint64_t photonPaths = 0;    // photon paths traced by this driver (not a checkpoint's)
     uint64_t rays = 0;           // closest-hit + shadow rays traced by this driver
     uint64_t visiblePoints = 0;  // visible points of the last iteration
-    double meanRadius = 0;       // mean pixel radius after the last iteration (host develop/stat)
-    size_t deviceBytes = 0;      // buffers of the driver + the last hash grid (scene not counted)
-    double eyeSeconds = 0, gridSeconds = 0, photonSeconds = 0, updateSeconds = 0;
+    uint64_t storedPhotons = 0;  // direction gather: photons stored in the last iteration
+    uint64_t photonRetraces = 0; // direction gather: photon passes traced again after an overflow
+    double meanRadius = 0;       // mean radius after the last iteration (host develop/stat)
+    size_t deviceBytes = 0;      // buffers of the driver + the last structure (scene not counted)
+    size_t peakBytes = 0;        // the largest deviceBytes so far
+    double eyeSeconds = 0, gridSeconds = 0, photonSeconds = 0, gatherSeconds = 0, updateSeconds = 0;
 };
 
 /// What the session sees of a driver (either device).
@@ -42,9 +58,9 @@ class SppmDriverBase {
 public:
     virtual ~SppmDriverBase() = default;
     virtual void iterate() = 0;
-    /// L = Ld / iterations + τ / (iterations · photon_count · π R²) per pixel.
+    /// Per pixel the mean over its entries of Ld / ldCount + τ / (iterations · photon_count · π R²).
     virtual Image develop() const = 0;
-    /// Host copy of the per-pixel statistics (row-major).
+    /// Host copy of the statistics (row-major pixels, `entriesPerPixel()` entries each).
     virtual std::vector<SppmPixel> pixels() const = 0;
     /// Replaces the statistics and the iteration count (a checkpoint's).
     virtual void restore(const std::vector<SppmPixel>& pixels, uint64_t iterations) = 0;
@@ -52,6 +68,7 @@ public:
     const SppmSettings& settings() const { return settings_; }
     int width() const { return width_; }
     int height() const { return height_; }
+    uint32_t entriesPerPixel() const { return settings_.mapper == PhotonMapper::Ppm ? settings_.hitpoints : 1; }
 
 protected:
     SppmSettings settings_;
@@ -59,100 +76,20 @@ protected:
     int width_ = 0, height_ = 0;
 };
 
-/// The driver for device Exec; throws caustica::Error for scenes it cannot render (emitters
-/// without an emission sampler: spot, directional, constant, envmap).
+/// The driver for device Exec; throws caustica::Error for scenes it cannot render.
 template <class Exec>
 std::unique_ptr<SppmDriverBase> makeSppmDriver(const Scene& scene, const Accel& accel, const SppmSettings& settings,
                                                uint64_t seed);
 
-/// The image of per-pixel statistics (host).
-Image sppmImage(const std::vector<SppmPixel>& pixels, int width, int height, uint64_t iterations, uint64_t photons);
-
-namespace sppm_detail {
-
-template <class Exec, class Intersector>
-void eyePass(Exec exec, const SceneView& view, const Intersector& accel, PathSettings path, uint64_t seed,
-             uint64_t iteration, int width, size_t pixelCount, SppmPixel* pixels, SppmVisiblePoint* points,
-             uint32_t* flags, uint32_t* rays) {
-    launch(
-        exec, "sppm.eye", pixelCount,
-        [=] CA_HD(size_t p) {
-            CameraSample c = cameraSample(view.camera, p, width, iteration, seed);
-            SppmVisiblePoint vp;
-            bool has = false;
-            uint32_t count = 0;
-            const Spectrum L =
-                sppmEyePath(view, accel, c.sampler, c.ray, path, uint32_t(kSppmDepthCap), vp, has, count);
-            // Invalid radiance (NaN/Inf/negative) is dropped as the film drops such samples.
-            if (std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b) && L.r >= 0 && L.g >= 0 && L.b >= 0) {
-                pixels[p].ld[0] += double(L.r);
-                pixels[p].ld[1] += double(L.g);
-                pixels[p].ld[2] += double(L.b);
-            }
-            vp.pixel = uint32_t(p);
-            points[p] = vp;
-            flags[p] = has ? 1u : 0u;
-            rays[p] = count;
-        },
-        16);
+/// Calls f(structure) with the lookup structure `kind` built over `points` on Exec's device.
+template <class Exec, class F>
+void withStructure(Exec exec, PhotonStructure kind, const PointSet& points, F&& f) {
+    switch (kind) {
+        case PhotonStructure::Grid: f(UniformGrid::build(exec, points)); return;
+        case PhotonStructure::Brute: f(BruteForce::build(exec, points)); return;
+        case PhotonStructure::Hash: f(HashGrid::build(exec, points)); return;
+    }
 }
-
-template <class Exec>
-void gatherPoints(Exec exec, size_t count, const uint32_t* list, const SppmVisiblePoint* points,
-                  const SppmPixel* pixels, Vec3f* positions, Float* radii) {
-    launch(exec, "sppm.points", count, [=] CA_HD(size_t j) {
-        const uint32_t p = list[j];
-        positions[j] = points[p].si.p;
-        radii[j] = Float(pixels[p].radius);
-    });
-}
-
-template <class Exec, class Intersector, class Lookup>
-void photonPass(Exec exec, const SceneView& view, const Intersector& accel, const Lookup& lookup,
-                const SppmVisiblePoint* points, const uint32_t* list, PathSettings path, uint32_t maxDepth,
-                SppmFixedPoint fixed, uint64_t seed, uint64_t iteration, uint64_t photons, uint64_t* phi, uint64_t* m,
-                uint64_t* rayBlocks) {
-    launch(
-        exec, "sppm.photons", size_t(photons),
-        [=] CA_HD(size_t i) {
-            IndependentSampler sampler = photonSampler(i, iteration, seed);
-            uint32_t rays = 0;
-            sppmTracePhoton(view, accel, lookup, points, list, sampler, path, maxDepth, fixed, phi, m, rays);
-            sppmAtomicAdd(rayBlocks + i / 1024, rays);
-        },
-        16);
-}
-
-template <class Exec>
-void updatePixels(Exec exec, size_t pixelCount, double alpha, SppmFixedPoint fixed, SppmPixel* pixels,
-                  uint64_t* phi, uint64_t* m) {
-    launch(exec, "sppm.update", pixelCount, [=] CA_HD(size_t p) {
-        double flux[3];
-        for (int c = 0; c < 3; ++c) {
-            flux[c] = double(phi[3 * p + c]) / fixed.scale;
-            phi[3 * p + c] = 0;
-        }
-        sppmUpdatePixel(pixels[p], flux, m[p], alpha);
-        m[p] = 0;
-    });
-}
-
-template <class Exec>
-void initPixels(Exec exec, size_t pixelCount, double radius, SppmPixel* pixels, uint64_t* phi, uint64_t* m) {
-    launch(exec, "sppm.init", pixelCount, [=] CA_HD(size_t p) {
-        pixels[p] = SppmPixel{};
-        pixels[p].radius = radius;
-        for (int c = 0; c < 3; ++c) phi[3 * p + c] = 0;
-        m[p] = 0;
-    });
-}
-
-template <class Exec>
-void zeroCounters(Exec exec, size_t n, uint64_t* counters) {
-    launch(exec, "sppm.zero", n, [=] CA_HD(size_t i) { counters[i] = 0; });
-}
-
-}  // namespace sppm_detail
 
 template <class Exec>
 class SppmDriver final : public SppmDriverBase {
@@ -162,66 +99,62 @@ public:
         settings_ = settings;
         width_ = scene.film.width;
         height_ = scene.film.height;
-        if (!(settings_.initialRadius > 0)) settings_.initialRadius = sppmAutoRadius(scene);
         const Float flux = maxEmissionFlux(scene.view());
         fixed_.scale = flux > 0 && std::isfinite(flux) ? 4294967296.0 / double(flux) : 1.0;
-        const size_t n = pixelCount();
+        const Bounds3f box = scene.bounds();
+        boxLo_ = box.empty() ? Vec3f(0) : box.lo;
+        const Vec3f extent = box.empty() ? Vec3f(1) : box.diagonal();
+        boxInvExtent_ = Vec3f(extent.x > 0 ? 1 / extent.x : 1, extent.y > 0 ? 1 / extent.y : 1,
+                              extent.z > 0 ? 1 / extent.z : 1);
+        const size_t n = entryCount();
+        if (n >= (size_t(1) << 32)) throw Error("sppm: too many pixels x hitpoints (at most 2^32 - 1)");
         const Device d = Exec::device();
-        pixels_ = Buffer<SppmPixel>(d, n);
+        stats_buf_ = Buffer<SppmPixel>(d, n);
         points_ = Buffer<SppmVisiblePoint>(d, n);
         flags_ = Buffer<uint32_t>(d, n);
         list_ = Buffer<uint32_t>(d, n);
+        keys_ = Buffer<uint32_t>(d, n);
         eyeRays_ = Buffer<uint32_t>(d, n);
         positions_ = Buffer<Vec3f>(d, n);
         radii_ = Buffer<Float>(d, n);
         phi_ = Buffer<uint64_t>(d, 3 * n);
         m_ = Buffer<uint64_t>(d, n);
         rayBlocks_ = Buffer<uint64_t>(d, size_t((settings_.photonCount + 1023) / 1024));
-        sppm_detail::initPixels(Exec{}, n, double(settings_.initialRadius), pixels_.data(), phi_.data(), m_.data());
-        bufferBytes_ = n * (sizeof(SppmPixel) + sizeof(SppmVisiblePoint) + 4 * sizeof(uint32_t) + sizeof(Vec3f) +
+        counter_ = Buffer<uint64_t>(d, 1);
+        if (!(settings_.initialRadius > 0)) settings_.initialRadius = autoRadius(scene);
+        sppm_detail::initStats(Exec{}, n, double(settings_.initialRadius), stats_buf_.data(), phi_.data(), m_.data());
+        bufferBytes_ = n * (sizeof(SppmPixel) + sizeof(SppmVisiblePoint) + 5 * sizeof(uint32_t) + sizeof(Vec3f) +
                             sizeof(Float) + 4 * sizeof(uint64_t)) +
                        rayBlocks_.size() * sizeof(uint64_t);
-        stats_.deviceBytes = bufferBytes_;
+        noteBytes(bufferBytes_);
         stats_.meanRadius = settings_.initialRadius;
     }
 
     void iterate() override {
         using Clock = std::chrono::steady_clock;
-        const size_t n = pixelCount();
         const uint64_t iteration = stats_.iterations;
-        const PathSettings path = settings_.path;
-        const SceneView& view = scene_.view();
         auto t0 = Clock::now();
-        scene_.visit(Exec{}, [&](const auto& intersector) {
-            sppm_detail::eyePass(Exec{}, view, intersector, path, seed_, iteration, width_, n, pixels_.data(),
-                                 points_.data(), flags_.data(), eyeRays_.data());
-        });
-        stats_.rays += reduceSum(Exec::device(), Span<const uint32_t>(eyeRays_.data(), n));
-        const uint32_t count = compactIndices(Exec::device(), Span<const uint32_t>(flags_.data(), n), list_.span());
-        stats_.visiblePoints = count;
+        const bool ppm = settings_.mapper == PhotonMapper::Ppm;
+        if (!ppm || !hitpointsReady_) {
+            eyePass(iteration);
+            hitpointsReady_ = true;
+            addLd_ = true;
+        }
+        const uint32_t count = visibleCount_;
         auto t1 = Clock::now();
         stats_.eyeSeconds += std::chrono::duration<double>(t1 - t0).count();
         if (count > 0) {
-            sppm_detail::gatherPoints(Exec{}, count, list_.data(), points_.data(), pixels_.data(), positions_.data(),
-                                      radii_.data());
-            PointSet set{Span<const Vec3f>(positions_.data(), count), Span<const Float>(radii_.data(), count), 0};
-            const HashGrid grid = HashGrid::build(Exec{}, set);
-            stats_.deviceBytes = bufferBytes_ + grid.memoryBytes();
-            auto t2 = Clock::now();
-            stats_.gridSeconds += std::chrono::duration<double>(t2 - t1).count();
-            sppm_detail::zeroCounters(Exec{}, rayBlocks_.size(), rayBlocks_.data());
-            const uint32_t maxDepth = sppmMaxDepth(path, uint32_t(2 * kSppmDepthCap));
-            const auto lookup = grid.view();
-            scene_.visit(Exec{}, [&](const auto& intersector) {
-                sppm_detail::photonPass(Exec{}, view, intersector, lookup, points_.data(), list_.data(), path,
-                                        maxDepth, fixed_, seed_, iteration, settings_.photonCount, phi_.data(),
-                                        m_.data(), rayBlocks_.data());
-            });
-            for (uint64_t r : rayBlocks_.toHost()) stats_.rays += r;
-            stats_.photonSeconds += std::chrono::duration<double>(Clock::now() - t2).count();
+            sppm_detail::gatherPoints(Exec{}, count, list_.data(), points_.data(), stats_buf_.data(),
+                                      positions_.data(), radii_.data());
+            if (settings_.direction == PhotonDirection::Deposit)
+                depositPass(iteration, count);
+            else
+                gatherPass(iteration, count);
         }
         auto t3 = Clock::now();
-        sppm_detail::updatePixels(Exec{}, n, double(settings_.alpha), fixed_, pixels_.data(), phi_.data(), m_.data());
+        sppm_detail::updateStats(Exec{}, entryCount(), double(settings_.alpha),
+                                 settings_.radiusSchedule == RadiusSchedule::Global, iteration + 1, fixed_,
+                                 stats_buf_.data(), phi_.data(), m_.data());
         stats_.photonPaths += settings_.photonCount;
         ++stats_.iterations;
         stats_.updateSeconds += std::chrono::duration<double>(Clock::now() - t3).count();
@@ -232,27 +165,173 @@ public:
         double sum = 0;
         for (const SppmPixel& q : p) sum += q.radius;
         const_cast<SppmStats&>(stats_).meanRadius = p.empty() ? 0 : sum / double(p.size());
-        return sppmImage(p, width_, height_, stats_.iterations, settings_.photonCount);
+        const uint64_t ldCount = settings_.mapper == PhotonMapper::Ppm ? (stats_.iterations > 0 ? 1 : 0)
+                                                                        : stats_.iterations;
+        return sppmImage(p, width_, height_, entriesPerPixel(), stats_.iterations, settings_.photonCount, ldCount);
     }
-    std::vector<SppmPixel> pixels() const override { return pixels_.toHost(); }
+    std::vector<SppmPixel> pixels() const override { return stats_buf_.toHost(); }
     void restore(const std::vector<SppmPixel>& pixels, uint64_t iterations) override {
-        if (pixels.size() != pixelCount()) throw Error("sppm: the statistics do not fit the image");
-        pixels_.copyFromHost(pixels);
+        if (pixels.size() != entryCount()) throw Error("sppm: the statistics do not fit the image");
+        stats_buf_.copyFromHost(pixels);
         stats_.iterations = iterations;
+        // ppm: the hitpoints are regenerated from the same streams; their Ld is in the statistics.
+        hitpointsReady_ = false;
+        addLd_ = settings_.mapper != PhotonMapper::Ppm || iterations == 0;
     }
 
 private:
-    size_t pixelCount() const { return size_t(width_) * size_t(height_); }
+    size_t entryCount() const { return size_t(width_) * size_t(height_) * entriesPerPixel(); }
+    void noteBytes(size_t bytes) {
+        stats_.deviceBytes = bytes;
+        stats_.peakBytes = std::max(stats_.peakBytes, bytes);
+    }
+
+    void eyePass(uint64_t iteration) {
+        const size_t n = entryCount();
+        sppm_detail::EyeSampling sampling;
+        sampling.perPixel = entriesPerPixel();
+        sampling.iteration = iteration;
+        sampling.fixedHitpoints = settings_.mapper == PhotonMapper::Ppm;
+        sampling.addLd = addLd_;
+        const SceneView& view = scene_.view();
+        scene_.visit(Exec{}, [&](const auto& intersector) {
+            sppm_detail::eyePass(Exec{}, view, intersector, settings_.path, settings_.roughnessThreshold, seed_,
+                                 sampling, width_, n, stats_buf_.data(), points_.data(), flags_.data(),
+                                 eyeRays_.data());
+        });
+        stats_.rays += reduceSum(Exec::device(), Span<const uint32_t>(eyeRays_.data(), n));
+        visibleCount_ = compactIndices(Exec::device(), Span<const uint32_t>(flags_.data(), n), list_.span());
+        stats_.visiblePoints = visibleCount_;
+        if (settings_.mortonOrder && visibleCount_ > 1) {
+            // Neighbouring visible points in neighbouring work items and memory (seed 003).
+            sppm_detail::mortonKeys(Exec{}, visibleCount_, list_.data(), points_.data(), boxLo_, boxInvExtent_,
+                                    keys_.data());
+            radixSortPairs(Exec::device(), Span<uint32_t>(keys_.data(), visibleCount_),
+                           Span<uint32_t>(list_.data(), visibleCount_), 30);
+        }
+    }
+
+    /// initial_radius 0: kSppmAutoFootprints pixel footprints at the median distance of the first
+    /// iteration's visible points from the camera (an eye pass that adds nothing to the image;
+    /// the same streams as the first iteration's, so the radius is the same on a resume and on
+    /// any thread count); sppmAutoRadius (the scene's size) when no visible point is found.
+    Float autoRadius(const Scene& scene) {
+        addLd_ = false;
+        eyePass(0);
+        addLd_ = true;
+        if (visibleCount_ == 0) return sppmAutoRadius(scene);
+        sppm_detail::footprints(Exec{}, visibleCount_, list_.data(), points_.data(), scene_.view().camera,
+                                radii_.data());
+        std::vector<Float> widths = radii_.toHost();
+        widths.resize(visibleCount_);
+        std::nth_element(widths.begin(), widths.begin() + widths.size() / 2, widths.end());
+        const Float r = kSppmAutoFootprints * widths[widths.size() / 2];
+        return r > 0 && std::isfinite(r) ? r : sppmAutoRadius(scene);
+    }
+
+    uint32_t photonDepth() const { return sppmMaxDepth(settings_.path, uint32_t(2 * kSppmDepthCap)); }
+
+    void depositPass(uint64_t iteration, uint32_t count) {
+        using Clock = std::chrono::steady_clock;
+        auto t0 = Clock::now();
+        const PointSet set{Span<const Vec3f>(positions_.data(), count), Span<const Float>(radii_.data(), count), 0};
+        withStructure(Exec{}, settings_.structure, set, [&](const auto& structure) {
+            noteBytes(bufferBytes_ + structure.memoryBytes());
+            auto t1 = Clock::now();
+            stats_.gridSeconds += std::chrono::duration<double>(t1 - t0).count();
+            sppm_detail::zeroCounters(Exec{}, rayBlocks_.size(), rayBlocks_.data());
+            const auto lookup = structure.view();
+            const SceneView& view = scene_.view();
+            scene_.visit(Exec{}, [&](const auto& intersector) {
+                sppm_detail::depositPhotons(Exec{}, view, intersector, lookup, points_.data(), list_.data(),
+                                            settings_.path, photonDepth(), settings_.roughnessThreshold, fixed_,
+                                            seed_, iteration, settings_.photonCount, phi_.data(), m_.data(),
+                                            rayBlocks_.data());
+            });
+            for (uint64_t r : rayBlocks_.toHost()) stats_.rays += r;
+            stats_.photonSeconds += std::chrono::duration<double>(Clock::now() - t1).count();
+        });
+    }
+
+    /// Traces the photon pass into the store, again with a larger store when it overflowed (the
+    /// photon streams are keyed by (photon, iteration), so the second pass stores the same photons).
+    uint64_t storePhotons(uint64_t iteration) {
+        if (store_.size() == 0) store_ = Buffer<SppmPhoton>(Exec::device(), size_t(2 * settings_.photonCount));
+        for (;;) {
+            sppm_detail::zeroCounters(Exec{}, 1, counter_.data());
+            sppm_detail::zeroCounters(Exec{}, rayBlocks_.size(), rayBlocks_.data());
+            const SceneView& view = scene_.view();
+            scene_.visit(Exec{}, [&](const auto& intersector) {
+                sppm_detail::storePhotons(Exec{}, view, intersector, settings_.path, photonDepth(),
+                                          settings_.roughnessThreshold, seed_, iteration, settings_.photonCount,
+                                          store_.data(), uint64_t(store_.size()), counter_.data(),
+                                          rayBlocks_.data());
+            });
+            for (uint64_t r : rayBlocks_.toHost()) stats_.rays += r;
+            const uint64_t stored = counter_.toHost()[0];
+            if (stored <= store_.size()) return stored;
+            if (stored >= (uint64_t(1) << 32)) throw Error("sppm: more than 2^32 photons stored in one iteration");
+            store_ = Buffer<SppmPhoton>(Exec::device(), size_t(stored + stored / 4));
+            ++stats_.photonRetraces;
+        }
+    }
+
+    void gatherPass(uint64_t iteration, uint32_t count) {
+        using Clock = std::chrono::steady_clock;
+        auto t0 = Clock::now();
+        const uint64_t stored = storePhotons(iteration);
+        stats_.storedPhotons = stored;
+        auto t1 = Clock::now();
+        stats_.photonSeconds += std::chrono::duration<double>(t1 - t0).count();
+        if (stored == 0) return;
+        const size_t n = size_t(stored);
+        if (sorted_.size() < store_.size()) {
+            sorted_ = Buffer<SppmPhoton>(Exec::device(), store_.size());
+            photonPositions_ = Buffer<Vec3f>(Exec::device(), store_.size());
+            photonKeys_ = Buffer<uint32_t>(Exec::device(), store_.size());
+            photonOrder_ = Buffer<uint32_t>(Exec::device(), store_.size());
+        }
+        const uint32_t* order = nullptr;
+        if (settings_.sortPhotons) {
+            // Photons of one cell next to each other in memory before the gather (seed 003).
+            sppm_detail::photonKeys(Exec{}, n, store_.data(), boxLo_, boxInvExtent_, photonKeys_.data(),
+                                    photonOrder_.data());
+            radixSortPairs(Exec::device(), Span<uint32_t>(photonKeys_.data(), n),
+                           Span<uint32_t>(photonOrder_.data(), n), 30);
+            order = photonOrder_.data();
+        }
+        sppm_detail::arrangePhotons(Exec{}, n, store_.data(), order, sorted_.data(), photonPositions_.data());
+        const Float largest = reduceMax(Exec::device(), Span<const float>(radii_.data(), count));
+        const PointSet set{Span<const Vec3f>(photonPositions_.data(), n), Span<const Float>(), largest};
+        withStructure(Exec{}, settings_.structure, set, [&](const auto& structure) {
+            noteBytes(bufferBytes_ + structure.memoryBytes() +
+                      store_.size() * (2 * sizeof(SppmPhoton) + sizeof(Vec3f) + 2 * sizeof(uint32_t)));
+            auto t2 = Clock::now();
+            stats_.gridSeconds += std::chrono::duration<double>(t2 - t1).count();
+            sppm_detail::gatherPhotons(Exec{}, scene_.view(), structure.view(), sorted_.data(), points_.data(),
+                                       list_.data(), count, stats_buf_.data(), photonDepth(), fixed_, phi_.data(),
+                                       m_.data());
+            stats_.gatherSeconds += std::chrono::duration<double>(Clock::now() - t2).count();
+        });
+    }
 
     DeviceScene scene_;
     uint64_t seed_;
     SppmFixedPoint fixed_;
-    Buffer<SppmPixel> pixels_;
+    Vec3f boxLo_, boxInvExtent_;
+    Buffer<SppmPixel> stats_buf_;
     Buffer<SppmVisiblePoint> points_;
-    Buffer<uint32_t> flags_, list_, eyeRays_;
+    Buffer<uint32_t> flags_, list_, keys_, eyeRays_;
     Buffer<Vec3f> positions_;
     Buffer<Float> radii_;
-    Buffer<uint64_t> phi_, m_, rayBlocks_;
+    Buffer<uint64_t> phi_, m_, rayBlocks_, counter_;
+    // direction gather
+    Buffer<SppmPhoton> store_, sorted_;
+    Buffer<Vec3f> photonPositions_;
+    Buffer<uint32_t> photonKeys_, photonOrder_;
+    uint32_t visibleCount_ = 0;
+    bool hitpointsReady_ = false;
+    bool addLd_ = true;
     size_t bufferBytes_ = 0;
 };
 

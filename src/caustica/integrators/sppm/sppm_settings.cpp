@@ -7,27 +7,72 @@
 
 namespace caustica {
 
-SppmSettings readSppmSettings(IntegratorParams& p) {
+SppmSettings readSppmSettings(IntegratorParams& p, PhotonMapper mapper) {
     SppmSettings s;
+    s.mapper = mapper;
     s.path = readPathSettings(p);
     s.photonCount = uint64_t(p.getInt("photon_count", int64_t(kSppmDefaultPhotons), 1, int64_t(kSppmMaxPhotons),
                                       "must be a whole number of photons in [1, 2^30]"));
     const double radius = p.getFloat("initial_radius", 0, -1e30, 1e30);
-    if (radius < 0) p.fail("initial_radius", "must be >= 0 (0: from the scene's size and resolution)");
+    if (radius < 0) p.fail("initial_radius", "must be >= 0 (0: from the pixel footprint)");
     s.initialRadius = Float(radius);
     const double alpha = p.getFloat("alpha", 2.0 / 3.0, -1e30, 1e30);
     if (!(alpha > 0 && alpha <= 1)) p.fail("alpha", "must be in (0, 1]");
     s.alpha = Float(alpha);
+    s.radiusSchedule = p.getString("radius_schedule", "local", {"local", "global"}) == "global"
+                           ? RadiusSchedule::Global
+                           : RadiusSchedule::Local;
+    const double rough = p.getFloat("roughness_threshold", 0, -1e30, 1e30);
+    if (!(rough >= 0 && rough <= 1)) p.fail("roughness_threshold", "must be in [0, 1] (a microfacet alpha)");
+    s.roughnessThreshold = Float(rough);
+    s.maxPasses = uint64_t(p.getInt("max_passes", 0, 0, int64_t(1) << 40, "must be >= 0 (0: the sample count)"));
+    const std::string structure = p.getString("structure", "hash", {"hash", "grid", "brute"});
+    s.structure = structure == "grid" ? PhotonStructure::Grid
+                  : structure == "brute" ? PhotonStructure::Brute
+                                         : PhotonStructure::Hash;
+    s.direction = p.getString("direction", "deposit", {"deposit", "gather"}) == "gather" ? PhotonDirection::Gather
+                                                                                           : PhotonDirection::Deposit;
+    s.mortonOrder = p.getBool("morton_order", true);
+    s.sortPhotons = p.getBool("sort_photons", true);
+    if (mapper == PhotonMapper::Ppm)
+        s.hitpoints = uint32_t(p.getInt("hitpoints", 1, 1, kPpmMaxHitpoints, "must be in [1, 256]"));
     return s;
 }
 
-const std::vector<IntegratorOption>& sppmOptions() {
-    static const std::vector<IntegratorOption> options = {
-        {"--sppm-photons", "photon_count", "SPPM: photon paths per iteration, 1..2^30 (default 2^17)"},
+namespace {
+std::vector<IntegratorOption> commonOptions() {
+    return {
+        {"--sppm-photons", "photon_count", "photon mapping: photon paths per iteration, 1..2^30 (default 2^17)"},
         {"--sppm-radius", "initial_radius",
-         "SPPM: initial gather radius in world units, >= 0 (default 0: 3 x scene diagonal / image size)"},
-        {"--sppm-alpha", "alpha", "SPPM: fraction of the new photons kept per iteration, in (0, 1] (default 2/3)"},
+         "photon mapping: initial gather radius in world units, >= 0 (default 0: 3 pixel footprints at the "
+         "median distance of the visible points)"},
+        {"--sppm-alpha", "alpha", "photon mapping: fraction of the new photons kept per iteration, in (0, 1] (default 2/3)"},
+        {"--sppm-schedule", "radius_schedule",
+         "photon mapping: radius reduction, local (per pixel) or global (one radius per iteration) (default local)"},
+        {"--sppm-roughness", "roughness_threshold",
+         "photon mapping: microfacet lobes with alpha below this are specular (default 0: delta only)"},
+        {"--sppm-passes", "max_passes", "photon mapping: iterations when --spp is not given (default: the sample count)"},
+        {"--sppm-structure", "structure", "photon mapping: lookup structure, hash, grid or brute (default hash)"},
+        {"--sppm-direction", "direction",
+         "photon mapping: deposit (photons into visible points' spheres) or gather (stored photons) (default deposit)"},
+        {"--sppm-morton", "morton_order", "photon mapping: visible points in Morton order, true/false (default true)"},
+        {"--sppm-sort-photons", "sort_photons",
+         "photon mapping, gather: photons copied into cell order, true/false (default true)"},
     };
+}
+}  // namespace
+
+const std::vector<IntegratorOption>& sppmOptions() {
+    static const std::vector<IntegratorOption> options = commonOptions();
+    return options;
+}
+
+const std::vector<IntegratorOption>& ppmOptions() {
+    static const std::vector<IntegratorOption> options = [] {
+        std::vector<IntegratorOption> o = commonOptions();
+        o.push_back({"--ppm-hitpoints", "hitpoints", "PPM: hitpoints per pixel of the one eye pass, 1..256 (default 1)"});
+        return o;
+    }();
     return options;
 }
 
@@ -38,5 +83,11 @@ Float sppmAutoRadius(const Scene& scene) {
     const double r = 3.0 * (diagonal > 0 ? diagonal : 1.0) / pixels;
     return Float(r);
 }
+
+const char* radiusScheduleName(RadiusSchedule s) { return s == RadiusSchedule::Global ? "global" : "local"; }
+const char* photonStructureName(PhotonStructure s) {
+    return s == PhotonStructure::Grid ? "grid" : s == PhotonStructure::Brute ? "brute" : "hash";
+}
+const char* photonDirectionName(PhotonDirection d) { return d == PhotonDirection::Gather ? "gather" : "deposit"; }
 
 }  // namespace caustica

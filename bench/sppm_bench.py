@@ -1,0 +1,180 @@
+#!/usr/bin/env python3
+"""Photon-mapping measurements of issue 18, each writing CSV (and a PNG where it plots):
+
+  options   time per iteration and photon paths/s of sppm (or ppm) for each choice of direction,
+            structure and coherence order (Morton-ordered visible points, photons sorted by cell)
+            at equal iterations; the images are bit-identical, so only time differs.
+  converge  relMSE against iterations (one render per iteration count, same seed, so each is the
+            prefix of the longest), log-log plot with the fitted slope; SPPM's error falls as
+            iterations^-alpha-ish (variance ~ 1/(i R_i^2) and bias^2 ~ R_i^4 with R_i^2 ~ i^(alpha-1)).
+  memory    driver memory (peak device bytes from the statistics) at a resolution and photon count,
+            e.g. 1920x1080 with 2^20 photons per iteration.
+
+Every render is `caustica render ... --stats-json`; the error is `caustica compare`'s relMSE with
+the reference's noise removed (REF.var.exr beside REF.exr, as scripts/make_references.py writes).
+
+Examples:
+  bench/sppm_bench.py options scenes/cornell-water/scene.xml --res 256x256 --spp 8 --csv out/sppm-options.csv
+  bench/sppm_bench.py converge scenes/cornell-water/scene.xml --res 256x256 \\
+      --ref scenes/cornell-water/reference/cornell-water-256.exr --iterations 4,8,16,32,64,128 --csv out/conv.csv
+  bench/sppm_bench.py memory scenes/cornell-water/scene.xml --res 1920x1080 --photons 1048576
+"""
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+
+from csv_out import write_csv
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.normpath(os.path.join(HERE, '..'))
+
+OPTIONS = [  # (name, extra arguments)
+    ('deposit hash (default)', []),
+    ('deposit hash, no Morton order', ['--sppm-morton', 'false']),
+    ('deposit grid', ['--sppm-structure', 'grid']),
+    ('gather hash', ['--sppm-direction', 'gather']),
+    ('gather hash, photons unsorted', ['--sppm-direction', 'gather', '--sppm-sort-photons', 'false']),
+    ('gather hash, unsorted, no Morton', ['--sppm-direction', 'gather', '--sppm-sort-photons', 'false',
+                                          '--sppm-morton', 'false']),
+    ('gather grid', ['--sppm-direction', 'gather', '--sppm-structure', 'grid']),
+]
+
+
+def run(cmd):
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    if p.returncode != 0:
+        sys.exit('failed (%d): %s\n%s' % (p.returncode, ' '.join(cmd), p.stderr.strip()))
+    return p.stdout
+
+
+def render(a, tmp, extra):
+    img = os.path.join(tmp, 'img.exr')
+    stats = os.path.join(tmp, 'stats.json')
+    cmd = [a.caustica, 'render', a.scene, '-q', '-o', img, '--stats-json', stats, '--checkpoint-every', '0',
+           '--integrator', a.integrator, '--seed', str(a.seed)]
+    if a.res:
+        cmd += ['--res', a.res]
+    if a.threads:
+        cmd += ['--threads', str(a.threads)]
+    run(cmd + list(a.extra) + extra)
+    with open(stats) as f:
+        return img, json.load(f)
+
+
+def phase_times(st):
+    return {k: st.get('sppm_%s_seconds' % k, '') for k in ('eye', 'grid', 'photon', 'gather', 'update')}
+
+
+def cmd_options(a):
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for rep in range(a.repeat):
+            for name, extra in OPTIONS:
+                _, st = render(a, tmp, ['--spp', str(a.spp)] + extra)
+                it = float(st['sppm_iterations'])
+                t = phase_times(st)
+                busy = sum(float(v) for v in t.values() if v != '')
+                row = {'option': name, 'repeat': rep, 'iterations': it, 'seconds': st['seconds'],
+                       'seconds_per_iteration': busy / it,
+                       'photon_paths_per_second': st['sppm_photon_paths_per_second'],
+                       'peak_device_bytes': st.get('sppm_peak_device_bytes', '')}
+                row.update({'%s_seconds' % k: v for k, v in t.items()})
+                rows.append(row)
+                print('%-36s %.4f s/iteration, %.3g photon paths/s' % (name, row['seconds_per_iteration'],
+                                                                     float(row['photon_paths_per_second'])), flush=True)
+    write_csv(a.csv, rows)
+
+
+def cmd_converge(a):
+    stem, ext = os.path.splitext(a.ref)
+    var = stem + '.var' + ext
+    var = var if os.path.exists(var) else None
+    iterations = [int(x) for x in a.iterations.split(',')]
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for it in iterations:
+            img, st = render(a, tmp, ['--spp', str(it)])
+            cmp = [a.caustica, 'compare', img, a.ref, '--json'] + (['--ref-var', var] if var else [])
+            m = json.loads(run(cmp))
+            err = m['relmse_ref_noise_removed'] if var else m['relmse']
+            rows.append({'iterations': it, 'seconds': st['seconds'], 'relmse': m['relmse'],
+                         'relmse_ref_noise_removed': m.get('relmse_ref_noise_removed', ''),
+                         'mean_ratio': m.get('mean_ratio', ''), 'mean_radius': st.get('sppm_mean_radius', '')})
+            print('%6d iterations %8.1f s  relMSE %.4g  mean ratio %.4f' % (it, st['seconds'], err,
+                                                                           float(m.get('mean_ratio', 'nan'))),
+                  flush=True)
+    write_csv(a.csv, rows)
+    key = 'relmse_ref_noise_removed' if var else 'relmse'
+    xs = [math.log(r['iterations']) for r in rows if float(r[key]) > 0]
+    ys = [math.log(float(r[key])) for r in rows if float(r[key]) > 0]
+    slope = float('nan')
+    if len(xs) >= 2:
+        mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
+        slope = sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
+    print('log-log slope of relMSE against iterations: %.3f' % slope)
+    try:
+        import matplotlib
+        matplotlib.use('Agg')
+        import matplotlib.pyplot as plt
+    except ImportError:
+        print('matplotlib not installed: no plot')
+        return
+    fig, ax = plt.subplots(figsize=(6, 4.2))
+    ax.loglog([r['iterations'] for r in rows], [max(1e-9, float(r[key])) for r in rows], 'o-',
+              label='%s (slope %.2f)' % (a.integrator, slope))
+    i0, e0 = rows[0]['iterations'], max(1e-9, float(rows[0][key]))
+    for s, style in ((-1.0, ':'), (-2.0 / 3.0, '--')):
+        ax.loglog([i0, rows[-1]['iterations']], [e0, e0 * (rows[-1]['iterations'] / i0) ** s], style, color='grey',
+                  label='slope %.2f' % s)
+    ax.set_xlabel('iterations')
+    ax.set_ylabel('relMSE' + (' (reference noise removed)' if var else ''))
+    ax.set_title(a.title or os.path.basename(os.path.dirname(a.scene)))
+    ax.grid(True, which='both', alpha=0.3)
+    ax.legend()
+    fig.tight_layout()
+    plot = a.plot or os.path.splitext(a.csv)[0] + '.png'
+    fig.savefig(plot, dpi=110)
+    print('wrote', plot)
+
+
+def cmd_memory(a):
+    with tempfile.TemporaryDirectory() as tmp:
+        _, st = render(a, tmp, ['--spp', str(a.spp), '--sppm-photons', str(a.photons)])
+    row = {'res': a.res, 'photons': a.photons, 'iterations': st['sppm_iterations'],
+           'device_bytes': st.get('sppm_device_bytes', ''), 'peak_device_bytes': st.get('sppm_peak_device_bytes', ''),
+           'stored_photons': st.get('sppm_stored_photons', ''), 'extra': ' '.join(a.extra)}
+    print('peak driver memory %.1f MiB (%s, %d photons/iteration, %s)' % (
+        float(row['peak_device_bytes']) / 2 ** 20, a.res, a.photons, row['extra'] or 'defaults'))
+    write_csv(a.csv, [row])
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument('what', choices=['options', 'converge', 'memory'])
+    ap.add_argument('scene')
+    ap.add_argument('--integrator', default='sppm', choices=['sppm', 'ppm'])
+    ap.add_argument('--res', help='WIDTHxHEIGHT')
+    ap.add_argument('--spp', type=int, default=8, help='iterations (options, memory)')
+    ap.add_argument('--repeat', type=int, default=1, help='repetitions of the whole option list (options)')
+    ap.add_argument('--photons', type=int, default=1 << 20, help='photon paths per iteration (memory)')
+    ap.add_argument('--ref', help='reference image (converge)')
+    ap.add_argument('--iterations', default='4,8,16,32,64,128', help='iteration counts (converge)')
+    ap.add_argument('--seed', type=int, default=1)
+    ap.add_argument('--threads', type=int)
+    ap.add_argument('--caustica', default=os.path.join(ROOT, 'build', 'caustica'))
+    ap.add_argument('--csv', default='sppm.csv')
+    ap.add_argument('--plot')
+    ap.add_argument('--title', default='')
+    ap.add_argument('extra', nargs='*', help='further caustica render options (after --)')
+    a = ap.parse_args()
+    if a.what == 'converge' and not a.ref:
+        sys.exit('converge needs --ref')
+    {'options': cmd_options, 'converge': cmd_converge, 'memory': cmd_memory}[a.what](a)
+
+
+if __name__ == '__main__':
+    main()

@@ -1,0 +1,215 @@
+// sppm_passes.h — the launches of the photon mappers' driver (sppm_driver.h), each a named free
+// function template so that nvcc compiles their CA_HD lambdas for the GPU from this one source.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+#include "caustica/integrators/megakernel_pass.h"
+#include "caustica/integrators/sppm/sppm_kernel.h"
+#include "caustica/integrators/sppm/sppm_photon.h"
+#include "caustica/parallel/launch.h"
+
+namespace caustica::sppm_detail {
+
+/// Where the eye pass takes its camera samples: sppm one per pixel with sample index =
+/// iteration; ppm `perPixel` per pixel, entry s = pixel · perPixel + j with sample index j.
+struct EyeSampling {
+    uint32_t perPixel = 1;
+    uint64_t iteration = 0;
+    bool fixedHitpoints = false;  // ppm
+    bool addLd = true;            // false: a ppm resume regenerates the hitpoints only
+};
+
+template <class Exec, class Intersector>
+void eyePass(Exec exec, const SceneView& view, const Intersector& accel, PathSettings path, Float specularBelow,
+             uint64_t seed, EyeSampling sampling, int width, size_t entries, SppmPixel* stats,
+             SppmVisiblePoint* points, uint32_t* flags, uint32_t* rays) {
+    launch(
+        exec, "sppm.eye", entries,
+        [=] CA_HD(size_t s) {
+            const size_t pixel = s / sampling.perPixel;
+            const uint64_t sample = sampling.fixedHitpoints ? uint64_t(s % sampling.perPixel) : sampling.iteration;
+            CameraSample c = cameraSample(view.camera, pixel, width, sample, seed);
+            SppmVisiblePoint vp;
+            bool has = false;
+            uint32_t count = 0;
+            const Spectrum L = sppmEyePath(view, accel, c.sampler, c.ray, path, uint32_t(kSppmDepthCap),
+                                           specularBelow, vp, has, count);
+            // Invalid radiance (NaN/Inf/negative) is dropped as the film drops such samples.
+            if (sampling.addLd && std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b) && L.r >= 0 &&
+                L.g >= 0 && L.b >= 0) {
+                stats[s].ld[0] += double(L.r);
+                stats[s].ld[1] += double(L.g);
+                stats[s].ld[2] += double(L.b);
+            }
+            vp.stat = uint32_t(s);
+            points[s] = vp;
+            flags[s] = has ? 1u : 0u;
+            rays[s] = count;
+        },
+        16);
+}
+
+/// Morton keys of the listed visible points (keys[j] for list[j]) in the scene's box.
+template <class Exec>
+void mortonKeys(Exec exec, size_t count, const uint32_t* list, const SppmVisiblePoint* points, Vec3f lo,
+                Vec3f invExtent, uint32_t* keys) {
+    launch(exec, "sppm.morton", count,
+           [=] CA_HD(size_t j) { keys[j] = sppmMorton(points[list[j]].si.p, lo, invExtent); });
+}
+
+/// The pixel footprint at each listed visible point (straight distance to the camera), into `out`.
+template <class Exec>
+void footprints(Exec exec, size_t count, const uint32_t* list, const SppmVisiblePoint* points, Camera camera,
+                Float* out) {
+    launch(exec, "sppm.footprint", count, [=] CA_HD(size_t j) {
+        const Vec3f eye = camera.worldFromCamera.applyPoint(Vec3f(0));
+        out[j] = pixelFootprint(camera, length(points[list[j]].si.p - eye));
+    });
+}
+
+template <class Exec>
+void gatherPoints(Exec exec, size_t count, const uint32_t* list, const SppmVisiblePoint* points,
+                  const SppmPixel* stats, Vec3f* positions, Float* radii) {
+    launch(exec, "sppm.points", count, [=] CA_HD(size_t j) {
+        const SppmVisiblePoint& vp = points[list[j]];
+        positions[j] = vp.si.p;
+        radii[j] = Float(stats[vp.stat].radius);
+    });
+}
+
+/// Photon path i of `iteration` (its own stream), its rays counted per block of 1024 paths.
+template <class Intersector, class Sink>
+CA_HD void photonPath(const SceneView& view, const Intersector& accel, size_t i, uint64_t iteration, uint64_t seed,
+                      const PathSettings& path, uint32_t maxDepth, Float specularBelow, uint64_t* rayBlocks,
+                      Sink&& sink) {
+    IndependentSampler sampler = photonSampler(i, iteration, seed);
+    uint32_t rays = 0;
+    sppmTracePhoton(view, accel, sampler, path, maxDepth, specularBelow, rays, sink);
+    sppmAtomicAdd(rayBlocks + i / 1024, rays);
+}
+
+/// Direction "deposit": each photon adds into every visible point whose sphere covers its hit
+/// (`lookup` over the visible points' spheres; j indexes `list`).
+template <class Exec, class Intersector, class Lookup>
+void depositPhotons(Exec exec, const SceneView& view, const Intersector& accel, const Lookup& lookup,
+                    const SppmVisiblePoint* points, const uint32_t* list, PathSettings path, uint32_t maxDepth,
+                    Float specularBelow, SppmFixedPoint fixed, uint64_t seed, uint64_t iteration, uint64_t photons,
+                    uint64_t* phi, uint64_t* m, uint64_t* rayBlocks) {
+    launch(
+        exec, "sppm.photons", size_t(photons),
+        [=] CA_HD(size_t i) {
+            photonPath(view, accel, i, iteration, seed, path, maxDepth, specularBelow, rayBlocks,
+                       [&](const SurfaceInteraction& si, Vec3f wo, const Spectrum& flux, uint32_t k) {
+                           lookup.forEachSphereCovering(si.p, [&](uint32_t j) {
+                               const SppmVisiblePoint& vp = points[list[j]];
+                               const Spectrum d = sppmContribution(view, vp, si.ng, wo, flux, k, maxDepth);
+                               if (!d.isBlack()) sppmDeposit(fixed, d, phi + 3 * size_t(vp.stat), m + vp.stat);
+                           });
+                       });
+        },
+        16);
+}
+
+/// Direction "gather", first half: each photon path appends its photons to `store` (at most
+/// `capacity`; `counter` counts them all, so the caller sees an overflow and traces again).
+template <class Exec, class Intersector>
+void storePhotons(Exec exec, const SceneView& view, const Intersector& accel, PathSettings path, uint32_t maxDepth,
+                  Float specularBelow, uint64_t seed, uint64_t iteration, uint64_t photons, SppmPhoton* store,
+                  uint64_t capacity, uint64_t* counter, uint64_t* rayBlocks) {
+    launch(
+        exec, "sppm.store", size_t(photons),
+        [=] CA_HD(size_t i) {
+            photonPath(view, accel, i, iteration, seed, path, maxDepth, specularBelow, rayBlocks,
+                       [&](const SurfaceInteraction& si, Vec3f wo, const Spectrum& flux, uint32_t k) {
+                           const uint64_t slot = sppmAtomicFetchAdd(counter, 1);
+                           if (slot < capacity) store[slot] = SppmPhoton{si.p, wo, si.ng, flux, k};
+                       });
+        },
+        16);
+}
+
+/// Morton keys of the stored photons and their positions (the keys sort photons by cell).
+template <class Exec>
+void photonKeys(Exec exec, size_t count, const SppmPhoton* store, Vec3f lo, Vec3f invExtent, uint32_t* keys,
+                uint32_t* order) {
+    launch(exec, "sppm.photon-keys", count, [=] CA_HD(size_t i) {
+        keys[i] = sppmMorton(store[i].p, lo, invExtent);
+        order[i] = uint32_t(i);
+    });
+}
+
+/// Copies the photons into `order` (sorted: order = the sort's permutation; else identity) and
+/// writes their positions.
+template <class Exec>
+void arrangePhotons(Exec exec, size_t count, const SppmPhoton* from, const uint32_t* order, SppmPhoton* to,
+                    Vec3f* positions) {
+    launch(exec, "sppm.photon-arrange", count, [=] CA_HD(size_t i) {
+        const SppmPhoton ph = from[order ? order[i] : i];
+        to[i] = ph;
+        positions[i] = ph.p;
+    });
+}
+
+/// Direction "gather", second half: every listed visible point sums the photons within its
+/// radius (`lookup` over the photon positions). Each statistics entry has one visible point, so
+/// no atomics: the fixed-point sum is written once.
+template <class Exec, class Lookup>
+void gatherPhotons(Exec exec, const SceneView& view, const Lookup& lookup, const SppmPhoton* photons,
+                   const SppmVisiblePoint* points, const uint32_t* list, size_t count, const SppmPixel* stats,
+                   uint32_t maxDepth, SppmFixedPoint fixed, uint64_t* phi, uint64_t* m) {
+    launch(
+        exec, "sppm.gather", count,
+        [=] CA_HD(size_t j) {
+            const SppmVisiblePoint& vp = points[list[j]];
+            uint64_t sum[3] = {0, 0, 0};
+            uint64_t found = 0;
+            lookup.forEachPointWithin(vp.si.p, Float(stats[vp.stat].radius), [&](uint32_t i) {
+                const SppmPhoton& ph = photons[i];
+                const Spectrum d = sppmContribution(view, vp, ph.ng, ph.wo, ph.flux, ph.depth, maxDepth);
+                if (d.isBlack()) return;
+                sum[0] += fixed.toUnits(d.r);
+                sum[1] += fixed.toUnits(d.g);
+                sum[2] += fixed.toUnits(d.b);
+                ++found;
+            });
+            for (int c = 0; c < 3; ++c) phi[3 * size_t(vp.stat) + c] = sum[c];
+            m[vp.stat] = found;
+        },
+        16);
+}
+
+template <class Exec>
+void updateStats(Exec exec, size_t entries, double alpha, bool global, uint64_t iteration, SppmFixedPoint fixed,
+                 SppmPixel* stats, uint64_t* phi, uint64_t* m) {
+    launch(exec, "sppm.update", entries, [=] CA_HD(size_t p) {
+        double flux[3];
+        for (int c = 0; c < 3; ++c) {
+            flux[c] = double(phi[3 * p + c]) / fixed.scale;
+            phi[3 * p + c] = 0;
+        }
+        if (global)
+            sppmUpdatePixelGlobal(stats[p], flux, m[p], alpha, iteration);
+        else
+            sppmUpdatePixel(stats[p], flux, m[p], alpha);
+        m[p] = 0;
+    });
+}
+
+template <class Exec>
+void initStats(Exec exec, size_t entries, double radius, SppmPixel* stats, uint64_t* phi, uint64_t* m) {
+    launch(exec, "sppm.init", entries, [=] CA_HD(size_t p) {
+        stats[p] = SppmPixel{};
+        stats[p].radius = radius;
+        for (int c = 0; c < 3; ++c) phi[3 * p + c] = 0;
+        m[p] = 0;
+    });
+}
+
+template <class Exec>
+void zeroCounters(Exec exec, size_t n, uint64_t* counters) {
+    launch(exec, "sppm.zero", n, [=] CA_HD(size_t i) { counters[i] = 0; });
+}
+
+}  // namespace caustica::sppm_detail

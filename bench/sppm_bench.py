@@ -17,7 +17,9 @@ Examples:
   bench/sppm_bench.py options scenes/cornell-water/scene.xml --res 256x256 --spp 8 --csv out/sppm-options.csv
   bench/sppm_bench.py converge scenes/cornell-water/scene.xml --res 256x256 \\
       --ref scenes/cornell-water/reference/cornell-water-256.exr --iterations 4,8,16,32,64,128 --csv out/conv.csv
-  bench/sppm_bench.py memory scenes/cornell-water/scene.xml --res 1920x1080 --photons 1048576
+  bench/sppm_bench.py memory scenes/cornell-water/scene.xml --res 1920x1080 --photons 1048576 --sppm-direction gather
+
+Options the script does not know are passed on to every `caustica render`.
 """
 import argparse
 import json
@@ -32,12 +34,13 @@ from csv_out import write_csv
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, '..'))
 
-OPTIONS = [  # (name, extra arguments)
-    ('deposit hash (default)', []),
-    ('deposit hash, no Morton order', ['--sppm-morton', 'false']),
-    ('deposit grid', ['--sppm-structure', 'grid']),
+OPTIONS = [  # (name, extra arguments): every choice named, whatever the defaults are
+    ('deposit hash', ['--sppm-direction', 'deposit']),
+    ('deposit hash, no Morton order', ['--sppm-direction', 'deposit', '--sppm-morton', 'false']),
+    ('deposit grid', ['--sppm-direction', 'deposit', '--sppm-structure', 'grid']),
     ('gather hash', ['--sppm-direction', 'gather']),
     ('gather hash, photons unsorted', ['--sppm-direction', 'gather', '--sppm-sort-photons', 'false']),
+    ('gather hash, no Morton order', ['--sppm-direction', 'gather', '--sppm-morton', 'false']),
     ('gather hash, unsorted, no Morton', ['--sppm-direction', 'gather', '--sppm-sort-photons', 'false',
                                           '--sppm-morton', 'false']),
     ('gather grid', ['--sppm-direction', 'gather', '--sppm-structure', 'grid']),
@@ -169,8 +172,7 @@ def main():
     ap.add_argument('--csv', default='sppm.csv')
     ap.add_argument('--plot')
     ap.add_argument('--title', default='')
-    ap.add_argument('extra', nargs='*', help='further caustica render options (after --)')
-    a = ap.parse_args()
+    a, a.extra = ap.parse_known_args()  # anything else: further `caustica render` options
     if a.what == 'converge' and not a.ref:
         sys.exit('converge needs --ref')
     {'options': cmd_options, 'converge': cmd_converge, 'memory': cmd_memory}[a.what](a)

@@ -21,7 +21,7 @@
 // | structure          | --sppm-structure      | lookup structure: hash, grid or brute (hash)          |
 // | direction          | --sppm-direction      | deposit: photons add into the visible points' spheres |
 // |                    |                       | (no photon storage); gather: photons are stored and   |
-// |                    |                       | each visible point gathers them (deposit)             |
+// |                    |                       | each visible point gathers them (gather)              |
 // | morton_order       | --sppm-morton         | visible points in Morton order (true)                 |
 // | sort_photons       | --sppm-sort-photons   | gather: photons copied into cell order (true)         |
 // | hitpoints          | --ppm-hitpoints       | ppm: hitpoints per pixel of its one eye pass (1)      |
@@ -64,7 +64,7 @@ struct SppmSettings {
     Float roughnessThreshold = 0;
     uint64_t maxPasses = 0;                   // 0: the sampler's sample_count
     PhotonStructure structure = PhotonStructure::Hash;
-    PhotonDirection direction = PhotonDirection::Deposit;
+    PhotonDirection direction = PhotonDirection::Gather;
     bool mortonOrder = true;
     bool sortPhotons = true;
     uint32_t hitpoints = 1;                   // ppm only

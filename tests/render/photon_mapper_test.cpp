@@ -151,5 +151,18 @@ TEST(PhotonMapper, MaxPassesEndsTheRenderWhenNoSampleCountIsGiven) {
     EXPECT_EQ(renderer.progress().samplesPerPixel, 3);
 }
 
+// The integrator's `seed` picks the streams when the command line gives no --seed; --seed wins.
+TEST(PhotonMapper, IntegratorSeedUnlessTheCommandLineGivesOne) {
+    const Scene scene = loadScene(sourcePath("scenes/cornell-box/scene.xml"), {{"width", "8"}, {"height", "8"}});
+    auto withSeed = [&](const char* seed, bool commandLine) {
+        caustica::RenderRequest r = request("sppm", 2, 1, {{"photon_count", "256"}, {"seed", seed}});
+        if (!commandLine) r.seed.reset();
+        return render(scene, r).rgb;
+    };
+    EXPECT_TRUE(withSeed("7", false) != withSeed("8", false));
+    EXPECT_TRUE(withSeed("7", false) == withSeed("7", false));
+    EXPECT_TRUE(withSeed("7", true) == withSeed("8", true));
+}
+
 }  // namespace
 }  // namespace caustica::test

@@ -37,9 +37,12 @@ const char* mapperName(const SppmSettings& s) { return s.mapper == PhotonMapper:
 class SppmSession final : public IntegratorSession {
 public:
     SppmSession(const SessionContext& c, const SppmSettings& settings) : device_(c.device) {
+        // --seed wins; else the integrator's seed; else the scene's sampler seed (c.seed).
+        const uint64_t seed = c.request.seed || settings.seed < 0 ? c.seed : uint64_t(settings.seed);
         driver_ = onDevice(c.device, [&](auto exec) {
-            return makeSppmDriver<decltype(exec)>(c.scene, c.accel, settings, c.seed);
+            return makeSppmDriver<decltype(exec)>(c.scene, c.accel, settings, seed);
         });
+        seed_ = seed;
     }
 
     void step(double) override {
@@ -54,7 +57,11 @@ public:
         const uint64_t pixels = uint64_t(driver_->width()) * uint64_t(driver_->height());
         return SessionCounters{iterationsThisRun_ * pixels, driver_->stats().rays, 0};
     }
-    RenderIdentity parameters() const override { return sppmIdentity(driver_->settings()); }
+    RenderIdentity parameters() const override {
+        RenderIdentity id = sppmIdentity(driver_->settings());
+        id.push_back(identityEntry("photon_seed", std::to_string(seed_)));  // the streams' seed as used
+        return id;
+    }
     void save(std::ostream& out) const override { writeSppmCheckpoint(out, checkpoint(true)); }
     void load(std::istream& in) override {
         SppmCheckpoint c = readSppmCheckpoint(in, checkpoint(false));
@@ -127,6 +134,7 @@ private:
     }
 
     Device device_;
+    uint64_t seed_ = 0;
     std::unique_ptr<SppmDriverBase> driver_;
     uint64_t iterationsThisRun_ = 0;
 };

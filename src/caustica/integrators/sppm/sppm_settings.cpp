@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "caustica/integrators/path/path_settings.h"
 
@@ -35,6 +36,7 @@ SppmSettings readSppmSettings(IntegratorParams& p, PhotonMapper mapper) {
                                                                                           : PhotonDirection::Gather;
     s.mortonOrder = p.getBool("morton_order", true);
     s.sortPhotons = p.getBool("sort_photons", true);
+    s.seed = p.getInt("seed", -1, -1, INT64_MAX, "must be a whole number >= 0 (or -1: the render's seed)");
     if (mapper == PhotonMapper::Ppm)
         s.hitpoints = uint32_t(p.getInt("hitpoints", 1, 1, kPpmMaxHitpoints, "must be in [1, 256]"));
     return s;

@@ -25,8 +25,10 @@
 // | morton_order       | --sppm-morton         | visible points in Morton order (true)                 |
 // | sort_photons       | --sppm-sort-photons   | gather: photons copied into cell order (true)         |
 // | hitpoints          | --ppm-hitpoints       | ppm: hitpoints per pixel of its one eye pass (1)      |
+// | seed               |                       | seed of the random streams (-1: the render's)         |
 //
-// The random streams come from the render's seed (--seed, or the scene's sampler seed).
+// The random streams come from --seed when given, else the integrator's `seed`, else the scene's
+// sampler seed.
 #pragma once
 
 #include <cstdint>
@@ -68,6 +70,7 @@ struct SppmSettings {
     bool mortonOrder = true;
     bool sortPhotons = true;
     uint32_t hitpoints = 1;                   // ppm only
+    int64_t seed = -1;                        // -1: the render's seed
 };
 
 /// Reads and checks the settings of `mapper` (errors name file:line or the option, and the reason).

@@ -2,7 +2,7 @@
 """Photon-mapping measurements of issue 18, each writing CSV (and a PNG where it plots):
 
   options   time per iteration and photon paths/s of sppm (or ppm) for each choice of direction,
-            structure and coherence order (Morton-ordered visible points, photons sorted by cell)
+            structure and coherence order (visible points in Morton order or k-means clusters, photons sorted by cell)
             at equal iterations; the images are bit-identical, so only time differs.
   converge  relMSE against iterations (one render per iteration count, same seed, so each is the
             prefix of the longest), log-log plot with the fitted slope; SPPM's error falls as
@@ -36,13 +36,15 @@ ROOT = os.path.normpath(os.path.join(HERE, '..'))
 
 OPTIONS = [  # (name, extra arguments): every choice named, whatever the defaults are
     ('deposit hash', ['--sppm-direction', 'deposit']),
-    ('deposit hash, no Morton order', ['--sppm-direction', 'deposit', '--sppm-morton', 'false']),
+    ('deposit hash, no Morton order', ['--sppm-direction', 'deposit', '--sppm-order', 'none']),
     ('deposit grid', ['--sppm-direction', 'deposit', '--sppm-structure', 'grid']),
     ('gather hash', ['--sppm-direction', 'gather']),
     ('gather hash, photons unsorted', ['--sppm-direction', 'gather', '--sppm-sort-photons', 'false']),
-    ('gather hash, no Morton order', ['--sppm-direction', 'gather', '--sppm-morton', 'false']),
+    ('gather hash, no Morton order', ['--sppm-direction', 'gather', '--sppm-order', 'none']),
     ('gather hash, unsorted, no Morton', ['--sppm-direction', 'gather', '--sppm-sort-photons', 'false',
-                                          '--sppm-morton', 'false']),
+                                          '--sppm-order', 'none']),
+    ('gather hash, k-means clusters', ['--sppm-direction', 'gather', '--sppm-order', 'kmeans']),
+    ('deposit hash, k-means clusters', ['--sppm-direction', 'deposit', '--sppm-order', 'kmeans']),
     ('gather grid', ['--sppm-direction', 'gather', '--sppm-structure', 'grid']),
 ]
 

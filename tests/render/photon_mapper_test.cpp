@@ -68,8 +68,9 @@ TEST(PhotonMapper, DirectionsStructuresAndOrdersGiveTheSameImage) {
     const std::vector<Params> variants = {
         {{"direction", "gather"}, {"structure", "hash"}},
         {{"direction", "gather"}, {"structure", "grid"}, {"sort_photons", "false"}},
-        {{"direction", "gather"}, {"structure", "brute"}, {"morton_order", "false"}},
-        {{"direction", "deposit"}, {"structure", "grid"}, {"morton_order", "false"}},
+        {{"direction", "gather"}, {"structure", "brute"}, {"hitpoint_order", "none"}},
+        {{"direction", "deposit"}, {"structure", "grid"}, {"hitpoint_order", "kmeans"}},
+        {{"direction", "gather"}, {"structure", "hash"}, {"hitpoint_order", "kmeans"}},
         {{"direction", "deposit"}, {"structure", "brute"}},
     };
     for (const char* integrator : {"sppm", "ppm"}) {

@@ -17,7 +17,7 @@
 namespace caustica {
 namespace {
 
-/// The settings that change the image. Not among them: structure, direction, morton_order and
+/// The settings that change the image. Not among them: structure, direction, hitpoint_order and
 /// sort_photons (the same sums to the bit, so a resume may change them) and max_passes (a budget).
 RenderIdentity sppmIdentity(const SppmSettings& s) {
     RenderIdentity id = {identityEntry("max_depth", std::to_string(s.path.maxDepth)),

@@ -17,6 +17,7 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cstdint>
 #include <memory>
@@ -28,6 +29,7 @@
 #include "caustica/integrators/megakernel_pass.h"
 #include "caustica/integrators/sppm/sppm_checkpoint.h"
 #include "caustica/integrators/sppm/sppm_kernel.h"
+#include "caustica/integrators/sppm/sppm_order.h"
 #include "caustica/integrators/sppm/sppm_passes.h"
 #include "caustica/integrators/sppm/sppm_settings.h"
 #include "caustica/parallel/buffer.h"
@@ -202,12 +204,13 @@ private:
         stats_.rays += reduceSum(Exec::device(), Span<const uint32_t>(eyeRays_.data(), n));
         visibleCount_ = compactIndices(Exec::device(), Span<const uint32_t>(flags_.data(), n), list_.span());
         stats_.visiblePoints = visibleCount_;
-        if (settings_.mortonOrder && visibleCount_ > 1) {
+        if (settings_.hitpointOrder != HitpointOrder::None && visibleCount_ > 1) {
             // Neighbouring visible points in neighbouring work items and memory (seed 003).
             sppm_detail::mortonKeys(Exec{}, visibleCount_, list_.data(), points_.data(), boxLo_, boxInvExtent_,
                                     keys_.data());
             radixSortPairs(Exec::device(), Span<uint32_t>(keys_.data(), visibleCount_),
                            Span<uint32_t>(list_.data(), visibleCount_), 30);
+            if (settings_.hitpointOrder == HitpointOrder::Kmeans) clusterVisiblePoints();
         }
     }
 
@@ -227,6 +230,18 @@ private:
         std::nth_element(widths.begin(), widths.begin() + widths.size() / 2, widths.end());
         const Float r = kSppmAutoFootprints * widths[widths.size() / 2];
         return r > 0 && std::isfinite(r) ? r : sppmAutoRadius(scene);
+    }
+
+    /// sppm_order.h: Lloyd's k-means from the Morton chunks, then the list sorted by cluster.
+    void clusterVisiblePoints() {
+        const uint32_t count = visibleCount_;
+        if (home_.size() == 0) {
+            home_ = Buffer<uint32_t>(Exec::device(), entryCount());
+            centres_ = Buffer<Vec3f>(Exec::device(), entryCount() / kKmeansClusterSize + 1);
+            bufferBytes_ += home_.size() * sizeof(uint32_t) + centres_.size() * sizeof(Vec3f);
+        }
+        // keys_ (the Morton keys, no longer needed) holds each entry's cluster.
+        kmeansOrder(Exec{}, count, list_.data(), points_.data(), home_.data(), keys_.data(), centres_.data());
     }
 
     uint32_t photonDepth() const { return sppmMaxDepth(settings_.path, uint32_t(2 * kSppmDepthCap)); }
@@ -329,6 +344,9 @@ private:
     Buffer<SppmPhoton> store_, sorted_;
     Buffer<Vec3f> photonPositions_;
     Buffer<uint32_t> photonKeys_, photonOrder_;
+    // hitpoint_order kmeans
+    Buffer<uint32_t> home_;
+    Buffer<Vec3f> centres_;
     uint32_t visibleCount_ = 0;
     bool hitpointsReady_ = false;
     bool addLd_ = true;

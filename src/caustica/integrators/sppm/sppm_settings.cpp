@@ -34,7 +34,8 @@ SppmSettings readSppmSettings(IntegratorParams& p, PhotonMapper mapper) {
     // Default: gather, the faster on cornell-water (docs/SPPM.md, "Measured").
     s.direction = p.getString("direction", "gather", {"deposit", "gather"}) == "deposit" ? PhotonDirection::Deposit
                                                                                           : PhotonDirection::Gather;
-    s.mortonOrder = p.getBool("morton_order", true);
+    const std::string order = p.getString("hitpoint_order", "morton", {"morton", "kmeans", "none"});
+    s.hitpointOrder = order == "kmeans" ? HitpointOrder::Kmeans : order == "none" ? HitpointOrder::None : HitpointOrder::Morton;
     s.sortPhotons = p.getBool("sort_photons", true);
     s.seed = p.getInt("seed", -1, -1, INT64_MAX, "must be a whole number >= 0 (or -1: the render's seed)");
     if (mapper == PhotonMapper::Ppm)
@@ -58,7 +59,8 @@ std::vector<IntegratorOption> commonOptions() {
         {"--sppm-structure", "structure", "photon mapping: lookup structure, hash, grid or brute (default hash)"},
         {"--sppm-direction", "direction",
          "photon mapping: deposit (photons into visible points' spheres) or gather (stored photons) (default gather)"},
-        {"--sppm-morton", "morton_order", "photon mapping: visible points in Morton order, true/false (default true)"},
+        {"--sppm-order", "hitpoint_order",
+         "photon mapping: order of the visible points, morton, kmeans (clusters, seed 003) or none (default morton)"},
         {"--sppm-sort-photons", "sort_photons",
          "photon mapping, gather: photons copied into cell order, true/false (default true)"},
     };
@@ -92,5 +94,8 @@ const char* photonStructureName(PhotonStructure s) {
     return s == PhotonStructure::Grid ? "grid" : s == PhotonStructure::Brute ? "brute" : "hash";
 }
 const char* photonDirectionName(PhotonDirection d) { return d == PhotonDirection::Gather ? "gather" : "deposit"; }
+const char* hitpointOrderName(HitpointOrder o) {
+    return o == HitpointOrder::Kmeans ? "kmeans" : o == HitpointOrder::None ? "none" : "morton";
+}
 
 }  // namespace caustica

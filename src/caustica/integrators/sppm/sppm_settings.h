@@ -22,7 +22,8 @@
 // | direction          | --sppm-direction      | deposit: photons add into the visible points' spheres |
 // |                    |                       | (no photon storage); gather: photons are stored and   |
 // |                    |                       | each visible point gathers them (gather)              |
-// | morton_order       | --sppm-morton         | visible points in Morton order (true)                 |
+// | hitpoint_order     | --sppm-order          | visible points in morton order, kmeans clusters (seed |
+// |                    |                       | 003) or none (morton)                                 |
 // | sort_photons       | --sppm-sort-photons   | gather: photons copied into cell order (true)         |
 // | hitpoints          | --ppm-hitpoints       | ppm: hitpoints per pixel of its one eye pass (1)      |
 // | seed               |                       | seed of the random streams (-1: the render's)         |
@@ -55,6 +56,7 @@ enum class PhotonMapper { Sppm, Ppm };
 enum class RadiusSchedule { Local, Global };
 enum class PhotonStructure { Hash, Grid, Brute };
 enum class PhotonDirection { Deposit, Gather };
+enum class HitpointOrder { None, Morton, Kmeans };  // sppm_order.h
 
 struct SppmSettings {
     PhotonMapper mapper = PhotonMapper::Sppm;
@@ -67,7 +69,7 @@ struct SppmSettings {
     uint64_t maxPasses = 0;                   // 0: the sampler's sample_count
     PhotonStructure structure = PhotonStructure::Hash;
     PhotonDirection direction = PhotonDirection::Gather;
-    bool mortonOrder = true;
+    HitpointOrder hitpointOrder = HitpointOrder::Morton;
     bool sortPhotons = true;
     uint32_t hitpoints = 1;                   // ppm only
     int64_t seed = -1;                        // -1: the render's seed
@@ -90,5 +92,6 @@ Float sppmAutoRadius(const Scene& scene);
 const char* radiusScheduleName(RadiusSchedule s);
 const char* photonStructureName(PhotonStructure s);
 const char* photonDirectionName(PhotonDirection d);
+const char* hitpointOrderName(HitpointOrder o);
 
 }  // namespace caustica

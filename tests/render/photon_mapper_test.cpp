@@ -72,6 +72,8 @@ TEST(PhotonMapper, DirectionsStructuresAndOrdersGiveTheSameImage) {
         {{"direction", "deposit"}, {"structure", "grid"}, {"hitpoint_order", "kmeans"}},
         {{"direction", "gather"}, {"structure", "hash"}, {"hitpoint_order", "kmeans"}},
         {{"direction", "deposit"}, {"structure", "brute"}},
+        {{"direction", "gather"}, {"structure", "kdtree"}},
+        {{"direction", "deposit"}, {"structure", "kdtree"}},
     };
     for (const char* integrator : {"sppm", "ppm"}) {
         SCOPED_TRACE(integrator);

@@ -1,4 +1,4 @@
-// point_query_test.cpp — forEachPointWithin (photons gathered around a point) of every grid
+// point_query_test.cpp — forEachPointWithin (photons gathered around a point) of every structure
 // returns exactly BruteForce's result: random, clustered, lattice (cell boundaries), empty, one
 // point, duplicates; query radii from 0 to covering everything.
 #include <gtest/gtest.h>
@@ -11,6 +11,7 @@ namespace {
 static_assert(PointLookup<BruteForce, CpuExec>);
 static_assert(PointLookup<UniformGrid, CpuExec>);
 static_assert(PointLookup<HashGrid, CpuExec>);
+static_assert(PointLookup<KdTree, CpuExec>);
 
 template <class S>
 class PointQueryTest : public ::testing::Test {
@@ -33,7 +34,7 @@ protected:
     }
 };
 
-using Structures = ::testing::Types<UniformGrid, HashGrid>;
+using Structures = ::testing::Types<UniformGrid, HashGrid, KdTree>;
 TYPED_TEST_SUITE(PointQueryTest, Structures);
 
 TYPED_TEST(PointQueryTest, RandomPoints) {

@@ -16,6 +16,7 @@
 #include "caustica/parallel/launch.h"
 #include "caustica/spatial/brute_force.h"
 #include "caustica/spatial/hash_grid.h"
+#include "caustica/spatial/kd_tree.h"
 #include "caustica/spatial/uniform_grid.h"
 
 namespace caustica::test {
@@ -97,6 +98,59 @@ std::vector<uint32_t> spheresCovering(const View& view, Vec3f x) {
     return found;
 }
 
+/// The indices a view's forEachSphereOnSegment reports, sorted (duplicates kept).
+template <class View>
+std::vector<uint32_t> spheresOnSegment(const View& view, Vec3f o, Vec3f d, Float tMax) {
+    std::vector<uint32_t> found;
+    view.forEachSphereOnSegment(o, d, tMax, [&](uint32_t i) { found.push_back(i); });
+    std::sort(found.begin(), found.end());
+    return found;
+}
+
+/// A view's kNearest result: indices in the order returned, and their squared distances.
+struct NearestResult {
+    std::vector<uint32_t> indices;
+    std::vector<Float> distancesSquared;
+    bool operator==(const NearestResult&) const = default;
+};
+
+/// Runs view.kNearest(center, k, maxRadius) (the output arrays sized for kMaxNeighbors).
+template <class View>
+NearestResult nearest(const View& view, Vec3f center, uint32_t k, Float maxRadius) {
+    uint32_t indices[kMaxNeighbors];
+    Float d2[kMaxNeighbors];
+    uint32_t count = 12345;
+    view.kNearest(center, k, maxRadius, indices, count, d2);
+    return {std::vector<uint32_t>(indices, indices + count), std::vector<Float>(d2, d2 + count)};
+}
+
+/// Every point as (|p - center|^2, index), computed as inBall does, sorted ascending: the
+/// reference of kNearest written independently of NearestHeap. nearestPrefix cuts it.
+inline std::vector<Neighbor> allByDistance(const std::vector<Vec3f>& points, Vec3f center) {
+    std::vector<Neighbor> all(points.size());
+    for (size_t i = 0; i < points.size(); ++i)
+        all[i] = Neighbor{lengthSquared(points[i] - center), uint32_t(i)};
+    std::sort(all.begin(), all.end(), [](Neighbor a, Neighbor b) {
+        return a.distanceSquared != b.distanceSquared ? a.distanceSquared < b.distanceSquared
+                                                      : a.index < b.index;
+    });
+    return all;
+}
+
+/// The first min(k, kMaxNeighbors) of `sorted` that lie within maxRadius (inBall's test).
+inline NearestResult nearestPrefix(const std::vector<Neighbor>& sorted, uint32_t k,
+                                   Float maxRadius) {
+    NearestResult r;
+    for (const Neighbor& c : sorted) {
+        if (r.indices.size() >= std::min(k, kMaxNeighbors) ||
+            !(c.distanceSquared <= maxRadius * maxRadius))
+            break;
+        r.indices.push_back(c.index);
+        r.distancesSquared.push_back(c.distanceSquared);
+    }
+    return r;
+}
+
 /// "query 3 radius 1e-07" (radius left out when negative), for failure messages.
 inline std::string queryLabel(size_t q, Float radius = -1) {
     std::ostringstream out;
@@ -132,9 +186,17 @@ private:
     size_t nonEmpty_ = 0;
 };
 
-/// The structures compared with BruteForce (the kd-tree and the multi-level hash table join here).
+/// The structures compared with BruteForce (the multi-level hash table joins here).
 template <class S>
 struct StructureName;
+template <>
+struct StructureName<BruteForce> {
+    static constexpr const char* value = "BruteForce";
+};
+template <>
+struct StructureName<KdTree> {
+    static constexpr const char* value = "KdTree";
+};
 template <>
 struct StructureName<UniformGrid> {
     static constexpr const char* value = "UniformGrid";

@@ -1,5 +1,5 @@
 // sphere_cover_test.cpp — forEachSphereCovering (SPPM's visible points with their radii, each
-// photon depositing into every sphere that covers it) of every grid returns exactly
+// photon depositing into every sphere that covers it) of every structure returns exactly
 // BruteForce's result: varied radii, one large sphere among small ones, zero radii, uniform
 // radius, spheres on cell boundaries, empty set, one sphere.
 #include <gtest/gtest.h>
@@ -27,7 +27,7 @@ protected:
     }
 };
 
-using Structures = ::testing::Types<UniformGrid, HashGrid>;
+using Structures = ::testing::Types<UniformGrid, HashGrid, KdTree>;
 TYPED_TEST_SUITE(SphereCoverTest, Structures);
 
 TYPED_TEST(SphereCoverTest, VariedRadii) {

@@ -2,6 +2,7 @@
 // cell coordinates hashed into a table of next-power-of-two >= point count buckets, points
 // grouped by bucket with a counting sort (cell_sort.h; SmallVCM's hash grid, built from
 // parallel/ primitives). Memory does not grow with the scene's extent, only with the points.
+// Segments walk the cells along them and k-nearest searches rings of cells (grid_walk.h).
 #pragma once
 
 #include <bit>
@@ -10,6 +11,7 @@
 #include <cstdint>
 
 #include "caustica/spatial/cell_sort.h"
+#include "caustica/spatial/grid_walk.h"
 #include "caustica/spatial/point_extent.h"
 #include "caustica/spatial/point_set.h"
 
@@ -21,9 +23,14 @@ namespace caustica {
 struct HashGridView : BallQueries<HashGridView> {
     PointSet points;
     CellLists cells;  // points grouped by bucket (cell_sort.h)
+    Float cellSize = 1;
     Float invCellSize = 1;
     uint32_t bucketMask = 0;  // bucketCount - 1 (a power of two)
     Float maxRadius = 0;      // the largest radius of the points
+    int32_t maxRing = 0;      // rings a k-nearest search visits before it tests every point
+
+    /// Cell coordinates are clamped to [-kCellLimit, kCellLimit].
+    static constexpr int32_t kCellLimit = 1 << 30;
 
     /// floor(v / cellSize), clamped to +-2^30 (NaN to 0) so that the integer is defined.
     CA_HD static int32_t axisCell(Float v, Float invCellSize) {
@@ -65,20 +72,81 @@ struct HashGridView : BallQueries<HashGridView> {
                 if (acceptsPoint<kSpheres>(points, i, center, radius)) f(i);
             return;
         }
-        for (int32_t z = lo.z; z <= hi.z; ++z) {
-            for (int32_t y = lo.y; y <= hi.y; ++y) {
-                for (int32_t x = lo.x; x <= hi.x; ++x) {
-                    const CellCoord cell{x, y, z};
-                    const uint32_t b = bucketOf(cell);
-                    for (uint32_t k = cells.cellStart[b]; k < cells.cellStart[b + 1]; ++k) {
-                        const uint32_t i = cells.order[k];
-                        if (acceptsPoint<kSpheres>(points, i, center, radius) &&
-                            cellOf(points.positions[i]) == cell)
-                            f(i);
-                    }
-                }
+        for (int32_t z = lo.z; z <= hi.z; ++z)
+            for (int32_t y = lo.y; y <= hi.y; ++y)
+                forEachInRow(
+                    lo.x, hi.x, y, z,
+                    [&](uint32_t i) { return acceptsPoint<kSpheres>(points, i, center, radius); },
+                    f);
+    }
+
+    /// The grid as grid_walk.h sees it: unbounded but for the clamping of cell coordinates.
+    CA_HD int32_t cellOnAxis(int, Float v) const { return axisCell(v, invCellSize); }
+    CA_HD int32_t firstCell(int) const { return -kCellLimit; }
+    CA_HD int32_t lastCell(int) const { return kCellLimit; }
+    CA_HD Float cellLower(int, int32_t c) const {
+        return c <= -kCellLimit ? -kUnbounded : Float(c) * cellSize;
+    }
+    CA_HD Float cellUpper(int, int32_t c) const {
+        return c >= kCellLimit ? kUnbounded : Float(c + 1) * cellSize;
+    }
+    /// report(i) for the points i of cells x0..x1 of row (y, z) with test(i): each cell's
+    /// bucket, test first, then the point's own cell (a collision must not report it twice).
+    template <class Test, class Report>
+    CA_HD void forEachInRow(int32_t x0, int32_t x1, int32_t y, int32_t z, Test&& test,
+                            Report&& report) const {
+        for (int32_t x = x0; x <= x1; ++x) {
+            const CellCoord cell{x, y, z};
+            const uint32_t b = bucketOf(cell);
+            for (uint32_t k = cells.cellStart[b]; k < cells.cellStart[b + 1]; ++k) {
+                const uint32_t i = cells.order[k];
+                if (test(i) && cellOf(points.positions[i]) == cell) report(i);
             }
         }
+    }
+
+    /// Walks the cells along the segment widened by the largest radius (grid_walk.h). When the
+    /// walk would visit more cells than there are buckets (counted first, when the segment's
+    /// box has more), every point is tested once instead.
+    template <class F>
+    CA_HD void visitSegment(const Segment& s, F& f) const {
+        if (cells.order.empty()) return;
+        const Float reach = segmentReach(s, maxRadius, cellSize);
+        const Float buckets = Float(bucketMask) + 1;
+        const Vec3f lo(-kUnbounded), hi(kUnbounded);
+        Float boxCells = 1;
+        for (int a = 0; a < 3; ++a) {
+            int32_t first, last;
+            spatial_detail::segmentCells(*this, s, a, 0, s.tEnd, reach, first, last);
+            boxCells *= Float(last) - Float(first) + 1;
+        }
+        auto meets = [&](uint32_t i) {
+            return sphereMeetsSegment(points.positions[i], points.radiusOf(i), s);
+        };
+        Float walked = 0;  // cells of the walk so far, while counting
+        auto count = [&](int32_t x0, int32_t x1, int32_t, int32_t) {
+            walked += Float(x1) - Float(x0) + 1;
+            return walked <= buckets;
+        };
+        if (boxCells > buckets && !walkSegmentCells(*this, s, reach, lo, hi, count)) {
+            for (uint32_t i = 0; i < uint32_t(cells.order.size()); ++i)
+                if (meets(i)) f(i);
+            return;
+        }
+        walkSegmentCells(*this, s, reach, lo, hi,
+                         [&](int32_t x0, int32_t x1, int32_t y, int32_t z) {
+                             forEachInRow(x0, x1, y, z, meets, f);
+                             return true;
+                         });
+    }
+    /// Rings of cells outward (grid_walk.h); after maxRing rings ((2 maxRing + 1)^3 <= 2 x the
+    /// buckets) it starts again testing every point: cost bounded by O(n).
+    CA_HD void searchNearest(Vec3f center, NearestHeap& heap) const {
+        if (cells.order.empty()) return;
+        if (searchRings(*this, center, maxRing, cellSize, 0, heap)) return;
+        heap.clear();
+        for (uint32_t i = 0; i < uint32_t(cells.order.size()); ++i)
+            heap.consider(i, points.positions[i], center);
     }
 };
 
@@ -96,9 +164,12 @@ public:
         g.cellSize_ = largest > 0 ? 2 * largest : Float(1);
         const uint32_t buckets = uint32_t(std::bit_ceil(points.size() > 0 ? points.size() : 1));
         g.view_.points = points;
+        g.view_.cellSize = g.cellSize_;
         g.view_.invCellSize = 1 / g.cellSize_;
         g.view_.bucketMask = buckets - 1;
         g.view_.maxRadius = largest;
+        while (std::pow(2.0 * (g.view_.maxRing + 1) + 1, 3.0) <= 2.0 * double(buckets))
+            ++g.view_.maxRing;
         g.groupPoints(exec, buckets);
         return g;
     }

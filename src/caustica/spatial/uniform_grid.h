@@ -2,7 +2,8 @@
 // sec. 4 "spatial grid": box of the points, cell = floor((x - box.min) / cellWidth) per axis),
 // points grouped by cell with a counting sort (cell_sort.h). The cell width comes from the
 // radius: 2 x the largest radius, so a ball of that radius overlaps 2 x 2 x 2 cells (3 along an
-// axis only within the rounding margin of conservativeReach).
+// axis only within the rounding margin of conservativeReach). Segments walk the rows of cells
+// along them and k-nearest searches rings of cells outward (grid_walk.h).
 #pragma once
 
 #include <cmath>
@@ -10,6 +11,7 @@
 #include <cstdint>
 
 #include "caustica/spatial/cell_sort.h"
+#include "caustica/spatial/grid_walk.h"
 #include "caustica/spatial/point_extent.h"
 #include "caustica/spatial/point_set.h"
 
@@ -22,6 +24,7 @@ struct UniformGridView : BallQueries<UniformGridView> {
     CellLists cells;  // points grouped by cell (cell_sort.h)
     Vec3f origin;     // the points' bounding box minimum
     Vec3f upper;      // and maximum (queries beyond it return at once)
+    Float cellSize = 1;
     Float invCellSize = 1;
     CellCoord resolution{1, 1, 1};  // cells per axis
     Float maxRadius = 0;            // the largest radius of the points
@@ -53,16 +56,58 @@ struct UniformGridView : BallQueries<UniformGridView> {
             center.x - r > upper.x || center.y - r > upper.y || center.z - r > upper.z)
             return;
         const CellCoord lo = cellOf(center - Vec3f(r)), hi = cellOf(center + Vec3f(r));
-        for (int32_t z = lo.z; z <= hi.z; ++z) {
-            for (int32_t y = lo.y; y <= hi.y; ++y) {
-                const uint32_t row = cellIndex({lo.x, y, z});
-                const uint32_t end = cells.cellStart[row + uint32_t(hi.x - lo.x) + 1];
-                for (uint32_t k = cells.cellStart[row]; k < end; ++k) {
-                    const uint32_t i = cells.order[k];
-                    if (acceptsPoint<kSpheres>(points, i, center, radius)) f(i);
-                }
-            }
-        }
+        for (int32_t z = lo.z; z <= hi.z; ++z)
+            for (int32_t y = lo.y; y <= hi.y; ++y)
+                forEachInRow(
+                    lo.x, hi.x, y, z,
+                    [&](uint32_t i) { return acceptsPoint<kSpheres>(points, i, center, radius); },
+                    f);
+    }
+
+    /// The grid as grid_walk.h sees it: cells along one axis, clamped to the grid.
+    CA_HD int32_t cellOnAxis(int a, Float v) const { return axisCell(v, origin[a], resolution[a]); }
+    CA_HD int32_t firstCell(int) const { return 0; }
+    CA_HD int32_t lastCell(int a) const { return resolution[a] - 1; }
+    CA_HD Float cellLower(int a, int32_t c) const {
+        return c <= 0 ? -kUnbounded : origin[a] + Float(c) * cellSize;
+    }
+    CA_HD Float cellUpper(int a, int32_t c) const {
+        return c >= resolution[a] - 1 ? kUnbounded : origin[a] + Float(c + 1) * cellSize;
+    }
+    /// report(i) for the points i of cells x0..x1 of row (y, z) with test(i): one contiguous
+    /// range of `order` (none when x1 < x0).
+    template <class Test, class Report>
+    CA_HD void forEachInRow(int32_t x0, int32_t x1, int32_t y, int32_t z, Test&& test,
+                            Report&& report) const {
+        if (x1 < x0) return;
+        const uint32_t row = cellIndex({x0, y, z});
+        const uint32_t end = cells.cellStart[row + uint32_t(x1 - x0) + 1];
+        for (uint32_t k = cells.cellStart[row]; k < end; ++k)
+            if (test(cells.order[k])) report(cells.order[k]);
+    }
+    /// The magnitude of the grid's coordinates (for the slack of segment and ring walks).
+    CA_HD Float coordinateScale() const { return max(maxAbs(origin), maxAbs(upper)) + cellSize; }
+
+    /// Walks the rows of cells along the segment widened by the largest radius (grid_walk.h).
+    template <class F>
+    CA_HD void visitSegment(const Segment& s, F& f) const {
+        if (cells.order.empty()) return;
+        const Float reach = segmentReach(s, maxRadius, coordinateScale());
+        auto meets = [&](uint32_t i) {
+            return sphereMeetsSegment(points.positions[i], points.radiusOf(i), s);
+        };
+        walkSegmentCells(*this, s, reach, origin, upper,
+                         [&](int32_t x0, int32_t x1, int32_t y, int32_t z) {
+                             forEachInRow(x0, x1, y, z, meets, f);
+                             return true;
+                         });
+    }
+    /// Rings of cells outward from center's cell until the k-th distance (or maxRadius) is
+    /// below the next ring's distance, or the rings cover the candidate cells (grid_walk.h).
+    CA_HD void searchNearest(Vec3f center, NearestHeap& heap) const {
+        if (cells.order.empty()) return;
+        const int32_t rings = max(resolution.x, max(resolution.y, resolution.z));
+        searchRings(*this, center, rings, cellSize, coordinateScale(), heap);
     }
 };
 
@@ -116,6 +161,7 @@ public:
         g.view_.points = points;
         g.view_.origin = layout.origin;
         g.view_.upper = box.empty() ? layout.origin : box.hi;
+        g.view_.cellSize = layout.cellSize;
         g.view_.invCellSize = 1 / layout.cellSize;
         g.view_.resolution = layout.resolution;
         g.view_.maxRadius = largest;

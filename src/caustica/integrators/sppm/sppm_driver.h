@@ -38,6 +38,7 @@
 #include "caustica/scene/scene.h"
 #include "caustica/spatial/brute_force.h"
 #include "caustica/spatial/hash_grid.h"
+#include "caustica/spatial/kd_tree.h"
 #include "caustica/spatial/uniform_grid.h"
 
 namespace caustica {
@@ -88,6 +89,7 @@ template <class Exec, class F>
 void withStructure(Exec exec, PhotonStructure kind, const PointSet& points, F&& f) {
     switch (kind) {
         case PhotonStructure::Grid: f(UniformGrid::build(exec, points)); return;
+        case PhotonStructure::KdTree: f(KdTree::build(exec, points)); return;
         case PhotonStructure::Brute: f(BruteForce::build(exec, points)); return;
         case PhotonStructure::Hash: f(HashGrid::build(exec, points)); return;
     }

@@ -18,7 +18,7 @@
 // |                    |                       | specular: no visible point, no deposit (0: delta only)|
 // | max_passes         | --sppm-passes         | iterations when --spp is not given (0: the sampler's  |
 // |                    |                       | sample_count)                                         |
-// | structure          | --sppm-structure      | lookup structure: hash, grid or brute (hash)          |
+// | structure          | --sppm-structure      | lookup structure: hash, grid, kdtree or brute (hash)  |
 // | direction          | --sppm-direction      | deposit: photons add into the visible points' spheres |
 // |                    |                       | (no photon storage); gather: photons are stored and   |
 // |                    |                       | each visible point gathers them (gather)              |
@@ -54,7 +54,7 @@ inline constexpr uint32_t kPpmMaxHitpoints = 256;
 
 enum class PhotonMapper { Sppm, Ppm };
 enum class RadiusSchedule { Local, Global };
-enum class PhotonStructure { Hash, Grid, Brute };
+enum class PhotonStructure { Hash, Grid, KdTree, Brute };
 enum class PhotonDirection { Deposit, Gather };
 enum class HitpointOrder { None, Morton, Kmeans };  // sppm_order.h
 

@@ -62,6 +62,23 @@ CA_HD bool walkSegmentCells(const Grid& g, const Segment& s, Float reach, Vec3f 
     return true;
 }
 
+/// The sphere of point i meets segment s (the predicate of every grid's segment query).
+template <class Grid>
+CA_HD bool gridSphereMeetsSegment(const Grid& g, uint32_t i, const Segment& s) {
+    return sphereMeetsSegment(g.points.positions[i], g.points.radiusOf(i), s);
+}
+
+/// f(i) for every point of the cells along s (widened by `reach`, within [lo, hi]) whose sphere
+/// meets s: the walk both grids' visitSegment make.
+template <class Grid, class F>
+CA_HD void forEachSphereAlongWalk(const Grid& g, const Segment& s, Float reach, Vec3f lo, Vec3f hi, F& f) {
+    auto meets = [&](uint32_t i) { return gridSphereMeetsSegment(g, i, s); };
+    walkSegmentCells(g, s, reach, lo, hi, [&](int32_t x0, int32_t x1, int32_t y, int32_t z) {
+        g.forEachInRow(x0, x1, y, z, meets, f);
+        return true;
+    });
+}
+
 /// Relative slack of the rings' distance bound: 1e-3 of the bound (the rounding of the squared
 /// distances) and kSegmentSlack of the coordinates involved (the rounding of cell assignment).
 inline constexpr Float kRingSlack = 1e-3f;

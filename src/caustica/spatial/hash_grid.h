@@ -120,9 +120,6 @@ struct HashGridView : BallQueries<HashGridView> {
             spatial_detail::segmentCells(*this, s, a, 0, s.tEnd, reach, first, last);
             boxCells *= Float(last) - Float(first) + 1;
         }
-        auto meets = [&](uint32_t i) {
-            return sphereMeetsSegment(points.positions[i], points.radiusOf(i), s);
-        };
         Float walked = 0;  // cells of the walk so far, while counting
         auto count = [&](int32_t x0, int32_t x1, int32_t, int32_t) {
             walked += Float(x1) - Float(x0) + 1;
@@ -130,14 +127,10 @@ struct HashGridView : BallQueries<HashGridView> {
         };
         if (boxCells > buckets && !walkSegmentCells(*this, s, reach, lo, hi, count)) {
             for (uint32_t i = 0; i < uint32_t(cells.order.size()); ++i)
-                if (meets(i)) f(i);
+                if (gridSphereMeetsSegment(*this, i, s)) f(i);
             return;
         }
-        walkSegmentCells(*this, s, reach, lo, hi,
-                         [&](int32_t x0, int32_t x1, int32_t y, int32_t z) {
-                             forEachInRow(x0, x1, y, z, meets, f);
-                             return true;
-                         });
+        forEachSphereAlongWalk(*this, s, reach, lo, hi, f);
     }
     /// Rings of cells outward (grid_walk.h); after maxRing rings ((2 maxRing + 1)^3 <= 2 x the
     /// buckets) it starts again testing every point: cost bounded by O(n).

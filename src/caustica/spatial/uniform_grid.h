@@ -93,14 +93,7 @@ struct UniformGridView : BallQueries<UniformGridView> {
     CA_HD void visitSegment(const Segment& s, F& f) const {
         if (cells.order.empty()) return;
         const Float reach = segmentReach(s, maxRadius, coordinateScale());
-        auto meets = [&](uint32_t i) {
-            return sphereMeetsSegment(points.positions[i], points.radiusOf(i), s);
-        };
-        walkSegmentCells(*this, s, reach, origin, upper,
-                         [&](int32_t x0, int32_t x1, int32_t y, int32_t z) {
-                             forEachInRow(x0, x1, y, z, meets, f);
-                             return true;
-                         });
+        forEachSphereAlongWalk(*this, s, reach, origin, upper, f);
     }
     /// Rings of cells outward from center's cell until the k-th distance (or maxRadius) is
     /// below the next ring's distance, or the rings cover the candidate cells (grid_walk.h).

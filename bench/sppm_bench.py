@@ -4,6 +4,8 @@
   options   time per iteration and photon paths/s of sppm (or ppm) for each choice of direction,
             structure and coherence order (visible points in Morton order or k-means clusters, photons sorted by cell)
             at equal iterations; the images are bit-identical, so only time differs.
+  structures  the same for each lookup structure (hash, grid, kdtree, multihash) in both
+            directions (issue 19: SPPM time per iteration per structure, equal images).
   converge  relMSE against iterations (one render per iteration count, same seed, so each is the
             prefix of the longest), log-log plot with the fitted slope; SPPM's error falls as
             iterations^-alpha-ish (variance ~ 1/(i R_i^2) and bias^2 ~ R_i^4 with R_i^2 ~ i^(alpha-1)).
@@ -48,6 +50,9 @@ OPTIONS = [  # (name, extra arguments): every choice named, whatever the default
     ('gather grid', ['--sppm-direction', 'gather', '--sppm-structure', 'grid']),
 ]
 
+STRUCTURES = [('%s %s' % (d, s), ['--sppm-direction', d, '--sppm-structure', s])
+              for d in ('gather', 'deposit') for s in ('hash', 'grid', 'kdtree', 'multihash')]
+
 
 def run(cmd):
     p = subprocess.run(cmd, capture_output=True, text=True)
@@ -74,11 +79,11 @@ def phase_times(st):
     return {k: st.get('sppm_%s_seconds' % k, '') for k in ('eye', 'grid', 'photon', 'gather', 'update')}
 
 
-def cmd_options(a):
+def cmd_options(a, options=OPTIONS):
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         for rep in range(a.repeat):
-            for name, extra in OPTIONS:
+            for name, extra in options:
                 _, st = render(a, tmp, ['--spp', str(a.spp)] + extra)
                 it = float(st['sppm_iterations'])
                 t = phase_times(st)
@@ -88,9 +93,11 @@ def cmd_options(a):
                        'photon_paths_per_second': st['sppm_photon_paths_per_second'],
                        'peak_device_bytes': st.get('sppm_peak_device_bytes', '')}
                 row.update({'%s_seconds' % k: v for k, v in t.items()})
+                row['stored_photons'] = st.get('sppm_stored_photons', '')
                 rows.append(row)
-                print('%-36s %.4f s/iteration, %.3g photon paths/s' % (name, row['seconds_per_iteration'],
-                                                                     float(row['photon_paths_per_second'])), flush=True)
+                print('%-36s %.4f s/iteration, %.3g photon paths/s (build %.4f, lookup %.4f s/iteration)' % (
+                    name, row['seconds_per_iteration'], float(row['photon_paths_per_second']),
+                    float(t['grid'] or 0) / it, float(t['gather'] or 0) / it), flush=True)
     write_csv(a.csv, rows)
 
 
@@ -159,7 +166,7 @@ def cmd_memory(a):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument('what', choices=['options', 'converge', 'memory'])
+    ap.add_argument('what', choices=['options', 'structures', 'converge', 'memory'])
     ap.add_argument('scene')
     ap.add_argument('--integrator', default='sppm', choices=['sppm', 'ppm'])
     ap.add_argument('--res', help='WIDTHxHEIGHT')
@@ -177,7 +184,7 @@ def main():
     a, a.extra = ap.parse_known_args()  # anything else: further `caustica render` options
     if a.what == 'converge' and not a.ref:
         sys.exit('converge needs --ref')
-    {'options': cmd_options, 'converge': cmd_converge, 'memory': cmd_memory}[a.what](a)
+    {'options': cmd_options, 'structures': lambda a: cmd_options(a, STRUCTURES), 'converge': cmd_converge, 'memory': cmd_memory}[a.what](a)
 
 
 if __name__ == '__main__':

@@ -76,18 +76,13 @@ Light makeSpot(Spectrum intensity, Vec3f pos, double cutoffDeg, double beamDeg,
 /// An envmap light over `w` x `h` texels (row-major, top row first) rotated by `rot`.
 uint32_t addEnvMap(Scene& scene, int w, int h, const std::vector<Spectrum>& texels,
                    const Mat3& rot) {
-    Light l;
-    l.type = LightType::EnvMap;
-    l.radiance = Spectrum(1.0f);
-    inverseRows(rot, l.localFromWorld);
+    Matrix4 m, mInv;  // a rotation: the inverse is the transpose
     for (int r = 0; r < 3; ++r)
-        l.worldFromLocal[r] = Vec3f(Float(rot[r][0]), Float(rot[r][1]), Float(rot[r][2]));
-    l.texOffset = uint32_t(scene.lightTexels.size());
-    l.texWidth = uint32_t(w);
-    l.texHeight = uint32_t(h);
-    scene.lightTexels.insert(scene.lightTexels.end(), texels.begin(), texels.end());
-    scene.lights.push_back(l);
-    return uint32_t(scene.lights.size() - 1);
+        for (int c = 0; c < 3; ++c) {
+            m.m[r][c] = Float(rot[r][c]);
+            mInv.m[c][r] = Float(rot[r][c]);
+        }
+    return test::addEnvMap(scene, w, h, texels, Transform(m, mInv));
 }
 
 /// A 12x7 map: a gradient, a black band (zero probability), a bright texel and one on the seam.

@@ -74,6 +74,8 @@ TEST(PhotonMapper, DirectionsStructuresAndOrdersGiveTheSameImage) {
         {{"direction", "deposit"}, {"structure", "brute"}},
         {{"direction", "gather"}, {"structure", "kdtree"}},
         {{"direction", "deposit"}, {"structure", "kdtree"}},
+        {{"direction", "gather"}, {"structure", "multihash"}},
+        {{"direction", "deposit"}, {"structure", "multihash"}, {"hitpoint_order", "none"}},
     };
     for (const char* integrator : {"sppm", "ppm"}) {
         SCOPED_TRACE(integrator);

@@ -22,25 +22,9 @@
 namespace caustica {
 namespace {
 
-constexpr int kSamples = 1000000;
+using test::addEnvMap;
 
-/// Appends an envmap light over `w` x `h` texels (row-major, top row first) with to_world `t`.
-uint32_t addEnvMap(Scene& scene, int w, int h, const std::vector<Spectrum>& texels,
-                   const Transform& t = Transform()) {
-    Light l;
-    l.type = LightType::EnvMap;
-    l.radiance = Spectrum(1.0f);
-    for (int r = 0; r < 3; ++r) {
-        l.localFromWorld[r] = Vec3f(t.mInv.m[r][0], t.mInv.m[r][1], t.mInv.m[r][2]);
-        l.worldFromLocal[r] = Vec3f(t.m.m[r][0], t.m.m[r][1], t.m.m[r][2]);
-    }
-    l.texOffset = uint32_t(scene.lightTexels.size());
-    l.texWidth = uint32_t(w);
-    l.texHeight = uint32_t(h);
-    scene.lightTexels.insert(scene.lightTexels.end(), texels.begin(), texels.end());
-    scene.lights.push_back(l);
-    return uint32_t(scene.lights.size() - 1);
-}
+constexpr int kSamples = 1000000;
 
 /// A 12x7 test map: a gradient, a bright spot, a black band (zero probability) and a bright texel
 /// on the seam column.

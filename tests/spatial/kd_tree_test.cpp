@@ -91,7 +91,7 @@ void withThreads(int threads, Body&& body) {
 
 template <class S>
 class ThreadCountTest : public ::testing::Test {};
-using Structures = ::testing::Types<UniformGrid, HashGrid, KdTree>;
+using Structures = ::testing::Types<UniformGrid, HashGrid, KdTree, MultiHash, MultiHashSmallLeaves>;
 TYPED_TEST_SUITE(ThreadCountTest, Structures);
 
 /// Every query's results, in the order reported, after a build on `threads` threads.

@@ -12,6 +12,7 @@ static_assert(PointLookup<BruteForce, CpuExec>);
 static_assert(PointLookup<UniformGrid, CpuExec>);
 static_assert(PointLookup<HashGrid, CpuExec>);
 static_assert(PointLookup<KdTree, CpuExec>);
+static_assert(PointLookup<MultiHash, CpuExec>);
 
 template <class S>
 class PointQueryTest : public ::testing::Test {
@@ -34,7 +35,7 @@ protected:
     }
 };
 
-using Structures = ::testing::Types<UniformGrid, HashGrid, KdTree>;
+using Structures = ::testing::Types<UniformGrid, HashGrid, KdTree, MultiHash, MultiHashSmallLeaves, MultiHashCoarserCells>;
 TYPED_TEST_SUITE(PointQueryTest, Structures);
 
 TYPED_TEST(PointQueryTest, RandomPoints) {

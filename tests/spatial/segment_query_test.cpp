@@ -75,7 +75,7 @@ protected:
     }
 };
 
-using Structures = ::testing::Types<UniformGrid, HashGrid, KdTree>;
+using Structures = ::testing::Types<UniformGrid, HashGrid, KdTree, MultiHash, MultiHashSmallLeaves, MultiHashCoarserCells>;
 TYPED_TEST_SUITE(SegmentQueryTest, Structures);
 
 TYPED_TEST(SegmentQueryTest, RandomSegmentsVariedRadii) {

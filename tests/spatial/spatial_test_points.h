@@ -17,6 +17,7 @@
 #include "caustica/spatial/brute_force.h"
 #include "caustica/spatial/hash_grid.h"
 #include "caustica/spatial/kd_tree.h"
+#include "caustica/spatial/multi_hash.h"
 #include "caustica/spatial/uniform_grid.h"
 
 namespace caustica::test {
@@ -186,24 +187,42 @@ private:
     size_t nonEmpty_ = 0;
 };
 
-/// The structures compared with BruteForce (the multi-level hash table joins here).
+/// The multi-level hash table with tiny leaves and cells of about one point: on the tests'
+/// few thousand points a deep tree of many grids at many levels (the default options would
+/// give most of them one leaf).
+struct MultiHashSmallLeaves : MultiHash {
+    MultiHashSmallLeaves(MultiHash m) : MultiHash(std::move(m)) {}
+    template <class Exec>
+    static MultiHashSmallLeaves build(Exec exec, const PointSet& points) {
+        return MultiHash::build(exec, points, MultiHashOptions{16, 1});
+    }
+};
+
+/// The multi-level hash table with small leaves whose cells are the coarser of the density
+/// and radius rules (multi_hash_build.h: chooseLeafLevel).
+struct MultiHashCoarserCells : MultiHash {
+    MultiHashCoarserCells(MultiHash m) : MultiHash(std::move(m)) {}
+    template <class Exec>
+    static MultiHashCoarserCells build(Exec exec, const PointSet& points) {
+        return MultiHash::build(exec, points, MultiHashOptions{64, 4, MultiHashCellRule::Coarser});
+    }
+};
+
+/// The structures compared with BruteForce, by name (test messages).
 template <class S>
 struct StructureName;
-template <>
-struct StructureName<BruteForce> {
-    static constexpr const char* value = "BruteForce";
-};
-template <>
-struct StructureName<KdTree> {
-    static constexpr const char* value = "KdTree";
-};
-template <>
-struct StructureName<UniformGrid> {
-    static constexpr const char* value = "UniformGrid";
-};
-template <>
-struct StructureName<HashGrid> {
-    static constexpr const char* value = "HashGrid";
-};
+#define CAUSTICA_STRUCTURE_NAME(S)                     \
+    template <>                                         \
+    struct StructureName<S> {                           \
+        static constexpr const char* value = #S;        \
+    };
+CAUSTICA_STRUCTURE_NAME(MultiHash)
+CAUSTICA_STRUCTURE_NAME(MultiHashCoarserCells)
+CAUSTICA_STRUCTURE_NAME(MultiHashSmallLeaves)
+CAUSTICA_STRUCTURE_NAME(BruteForce)
+CAUSTICA_STRUCTURE_NAME(KdTree)
+CAUSTICA_STRUCTURE_NAME(UniformGrid)
+CAUSTICA_STRUCTURE_NAME(HashGrid)
+#undef CAUSTICA_STRUCTURE_NAME
 
 }  // namespace caustica::test

@@ -27,7 +27,7 @@ protected:
     }
 };
 
-using Structures = ::testing::Types<UniformGrid, HashGrid, KdTree>;
+using Structures = ::testing::Types<UniformGrid, HashGrid, KdTree, MultiHash, MultiHashSmallLeaves, MultiHashCoarserCells>;
 TYPED_TEST_SUITE(SphereCoverTest, Structures);
 
 TYPED_TEST(SphereCoverTest, VariedRadii) {

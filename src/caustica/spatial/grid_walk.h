@@ -1,15 +1,18 @@
-// grid_walk.h — the two cell walks both grids (uniform_grid.h, hash_grid.h) share: the cells
-// along a segment widened by a reach (a 3D DDA by nested clipping) and the rings of cells
-// around a point, outward, for k nearest neighbours. Written once over a Grid that provides
+// grid_walk.h — the cell walks every grid (uniform_grid.h, hash_grid.h, a leaf of
+// multi_hash.h) shares: the cells of a box, the cells along a segment widened by a reach (a 3D
+// DDA by nested clipping) and the rings of cells around a point, outward, for k nearest
+// neighbours. Written once over a Grid that provides
 //   cellOnAxis(axis, v)       the cell of coordinate v (monotone in v; clamped to the grid),
 //   firstCell(axis), lastCell(axis)   the clamping range,
 //   cellLower(axis, c), cellUpper(axis, c)   the nominal bounds of cell c (-inf / +inf for the
 //                             first / last cell, which take everything beyond),
 //   forEachInRow(x0, x1, y, z, test, report)   report(i) for each point i of cells x0..x1 of
-//                             row (y, z) with test(i), once (the hash grid checks each point's
-//                             own cell, after the cheaper test).
+//                             row (y, z) with test(i), once (the hashed grids check each point's
+//                             own cell, after the cheaper test),
+//   forEachPoint(test, report)   the same for every point of the grid (the fallbacks).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 
 #include "caustica/spatial/k_nearest.h"
@@ -29,6 +32,26 @@ CA_HD void segmentCells(const Grid& g, const Segment& s, int axis, Float t0, Flo
 }
 
 }  // namespace spatial_detail
+
+/// Cells in the box lo..hi (inclusive), as a Float: no overflow for any box.
+CA_HD_INLINE Float cellBoxCount(CellCoord lo, CellCoord hi) {
+    return (Float(hi.x) - Float(lo.x) + 1) * (Float(hi.y) - Float(lo.y) + 1) * (Float(hi.z) - Float(lo.z) + 1);
+}
+
+/// report(i) for every point i with test(i) in the cells lo..hi of grid g (row by row), or, when
+/// the box has more than maxCells cells, in g.forEachPoint (every point once: the same result
+/// at a cost bounded by the points; the hashed grids pass their bucket count, the uniform grid
+/// +inf).
+template <class Grid, class Test, class Report>
+CA_HD void forEachInCellBox(const Grid& g, CellCoord lo, CellCoord hi, Float maxCells, Test&& test,
+                            Report&& report) {
+    if (cellBoxCount(lo, hi) > maxCells) {
+        g.forEachPoint(test, report);
+        return;
+    }
+    for (int32_t z = lo.z; z <= hi.z; ++z)
+        for (int32_t y = lo.y; y <= hi.y; ++y) g.forEachInRow(lo.x, hi.x, y, z, test, report);
+}
 
 /// row(x0, x1, y, z) for every row of cells (x0..x1, y, z) that segment s widened by `reach`
 /// may touch, inside the box [lo, hi] widened by reach (a point beyond it cannot be in any
@@ -79,6 +102,31 @@ CA_HD void forEachSphereAlongWalk(const Grid& g, const Segment& s, Float reach, 
     });
 }
 
+/// The segment query of a hashed grid (hash grid, a leaf of the multi-level hash table): the
+/// walk of forEachSphereAlongWalk, unless it would visit more than maxCells cells (counted
+/// first, when the segment's box of cells has more); then g.forEachPoint(test, report) tests
+/// every point of the grid once instead: the same result at a cost bounded by the points.
+template <class Grid, class F>
+CA_HD void forEachSphereAlongWalkOrScan(const Grid& g, const Segment& s, Float reach, Vec3f lo, Vec3f hi,
+                                        Float maxCells, F& f) {
+    Float boxCells = 1;
+    for (int a = 0; a < 3; ++a) {
+        int32_t first, last;
+        spatial_detail::segmentCells(g, s, a, 0, s.tEnd, reach, first, last);
+        boxCells *= Float(last) - Float(first) + 1;
+    }
+    Float walked = 0;  // cells of the walk so far, while counting
+    auto count = [&](int32_t x0, int32_t x1, int32_t, int32_t) {
+        walked += Float(x1) - Float(x0) + 1;
+        return walked <= maxCells;
+    };
+    if (boxCells > maxCells && !walkSegmentCells(g, s, reach, lo, hi, count)) {
+        g.forEachPoint([&](uint32_t i) { return gridSphereMeetsSegment(g, i, s); }, f);
+        return;
+    }
+    forEachSphereAlongWalk(g, s, reach, lo, hi, f);
+}
+
 /// Relative slack of the rings' distance bound: 1e-3 of the bound (the rounding of the squared
 /// distances) and kSegmentSlack of the coordinates involved (the rounding of cell assignment).
 inline constexpr Float kRingSlack = 1e-3f;
@@ -98,8 +146,9 @@ CA_HD bool searchRings(const Grid& g, Vec3f center, int32_t maxRing, Float cellS
                        NearestHeap& heap) {
     const CellCoord c{g.cellOnAxis(0, center.x), g.cellOnAxis(1, center.y),
                       g.cellOnAxis(2, center.z)};
-    // Only cells within maxRadius (widened as visit() widens) can hold a point the heap keeps.
-    const Float reach = conservativeReach(heap.maxRadius());
+    // Only cells within the heap's limit (maxRadius until it is full; widened as visit() widens)
+    // can hold a point the heap keeps.
+    const Float reach = conservativeReach(std::sqrt(heap.limit()));
     const CellCoord first{max(g.firstCell(0), g.cellOnAxis(0, center.x - reach)),
                           max(g.firstCell(1), g.cellOnAxis(1, center.y - reach)),
                           max(g.firstCell(2), g.cellOnAxis(2, center.z - reach))};

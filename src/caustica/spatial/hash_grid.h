@@ -17,6 +17,20 @@
 
 namespace caustica {
 
+/// The hash of a cell (hash grid and multi-level hash table): Teschner et al. 2003 ("Optimized
+/// Spatial Hashing for Collision Detection of Deformable Objects"), x p1 xor y p2 xor z p3, then
+/// MurmurHash3's finaliser, because tables are powers of two and the low bits of the products
+/// alone are poorly mixed.
+CA_HD_INLINE uint32_t hashCell(CellCoord c) {
+    uint32_t h = uint32_t(c.x) * 73856093u ^ uint32_t(c.y) * 19349663u ^ uint32_t(c.z) * 83492791u;
+    h ^= h >> 16;
+    h *= 0x85ebca6bu;
+    h ^= h >> 13;
+    h *= 0xc2b2ae35u;
+    h ^= h >> 16;
+    return h;
+}
+
 /// What kernels query. Different cells may share a bucket (a hash collision): a point is
 /// reported only from its own cell (its cell is recomputed and compared), so a collision costs
 /// candidates, never a duplicate or a wrong result.
@@ -42,19 +56,7 @@ struct HashGridView : BallQueries<HashGridView> {
     CA_HD CellCoord cellOf(Vec3f p) const {
         return {axisCell(p.x, invCellSize), axisCell(p.y, invCellSize), axisCell(p.z, invCellSize)};
     }
-    /// Teschner et al. 2003 ("Optimized Spatial Hashing for Collision Detection of Deformable
-    /// Objects"): x p1 xor y p2 xor z p3, then MurmurHash3's finaliser, because the table is a
-    /// power of two and the low bits of the products alone are poorly mixed.
-    CA_HD uint32_t bucketOf(CellCoord c) const {
-        uint32_t h =
-            uint32_t(c.x) * 73856093u ^ uint32_t(c.y) * 19349663u ^ uint32_t(c.z) * 83492791u;
-        h ^= h >> 16;
-        h *= 0x85ebca6bu;
-        h ^= h >> 13;
-        h *= 0xc2b2ae35u;
-        h ^= h >> 16;
-        return h & bucketMask;
-    }
+    CA_HD uint32_t bucketOf(CellCoord c) const { return hashCell(c) & bucketMask; }
     /// The bucket of position p (the key of the build's sort).
     CA_HD uint32_t keyOf(Vec3f p) const { return bucketOf(cellOf(p)); }
 
@@ -64,20 +66,9 @@ struct HashGridView : BallQueries<HashGridView> {
     CA_HD void visit(Vec3f center, Float reach, Float radius, F& f) const {
         if (cells.order.empty()) return;
         const Float r = conservativeReach(reach);
-        const CellCoord lo = cellOf(center - Vec3f(r)), hi = cellOf(center + Vec3f(r));
-        const Float cellCount = (Float(hi.x) - Float(lo.x) + 1) * (Float(hi.y) - Float(lo.y) + 1) *
-                                (Float(hi.z) - Float(lo.z) + 1);
-        if (cellCount > Float(bucketMask) + 1) {
-            for (uint32_t i = 0; i < uint32_t(cells.order.size()); ++i)
-                if (acceptsPoint<kSpheres>(points, i, center, radius)) f(i);
-            return;
-        }
-        for (int32_t z = lo.z; z <= hi.z; ++z)
-            for (int32_t y = lo.y; y <= hi.y; ++y)
-                forEachInRow(
-                    lo.x, hi.x, y, z,
-                    [&](uint32_t i) { return acceptsPoint<kSpheres>(points, i, center, radius); },
-                    f);
+        forEachInCellBox(
+            *this, cellOf(center - Vec3f(r)), cellOf(center + Vec3f(r)), Float(bucketMask) + 1,
+            [&](uint32_t i) { return acceptsPoint<kSpheres>(points, i, center, radius); }, f);
     }
 
     /// The grid as grid_walk.h sees it: unbounded but for the clamping of cell coordinates.
@@ -105,32 +96,21 @@ struct HashGridView : BallQueries<HashGridView> {
         }
     }
 
-    /// Walks the cells along the segment widened by the largest radius (grid_walk.h). When the
-    /// walk would visit more cells than there are buckets (counted first, when the segment's
-    /// box has more), every point is tested once instead.
+    /// report(i) for every point i with test(i), once each, in index order (the fallbacks).
+    template <class Test, class Report>
+    CA_HD void forEachPoint(Test&& test, Report&& report) const {
+        for (uint32_t i = 0; i < uint32_t(cells.order.size()); ++i)
+            if (test(i)) report(i);
+    }
+
+    /// Walks the cells along the segment widened by the largest radius (grid_walk.h), or tests
+    /// every point once when the walk would visit more cells than there are buckets.
     template <class F>
     CA_HD void visitSegment(const Segment& s, F& f) const {
         if (cells.order.empty()) return;
         const Float reach = segmentReach(s, maxRadius, cellSize);
-        const Float buckets = Float(bucketMask) + 1;
-        const Vec3f lo(-kUnbounded), hi(kUnbounded);
-        Float boxCells = 1;
-        for (int a = 0; a < 3; ++a) {
-            int32_t first, last;
-            spatial_detail::segmentCells(*this, s, a, 0, s.tEnd, reach, first, last);
-            boxCells *= Float(last) - Float(first) + 1;
-        }
-        Float walked = 0;  // cells of the walk so far, while counting
-        auto count = [&](int32_t x0, int32_t x1, int32_t, int32_t) {
-            walked += Float(x1) - Float(x0) + 1;
-            return walked <= buckets;
-        };
-        if (boxCells > buckets && !walkSegmentCells(*this, s, reach, lo, hi, count)) {
-            for (uint32_t i = 0; i < uint32_t(cells.order.size()); ++i)
-                if (gridSphereMeetsSegment(*this, i, s)) f(i);
-            return;
-        }
-        forEachSphereAlongWalk(*this, s, reach, lo, hi, f);
+        forEachSphereAlongWalkOrScan(*this, s, reach, Vec3f(-kUnbounded), Vec3f(kUnbounded),
+                                     Float(bucketMask) + 1, f);
     }
     /// Rings of cells outward (grid_walk.h); after maxRing rings ((2 maxRing + 1)^3 <= 2 x the
     /// buckets) it starts again testing every point: cost bounded by O(n).

@@ -117,4 +117,32 @@ private:
     Float maxDistanceSquared_ = 0;
 };
 
+/// An entry of a tree's k-nearest walk: a node and a lower bound of the squared distances of
+/// the points below it.
+struct NearestEntry {
+    uint32_t node = 0;
+    Float bound = 0;
+};
+
+/// The bounded depth-first walk of the trees' k-nearest searches (kd_tree.h, multi_hash.h), from
+/// node 0: expand(entry, push) offers the node's points to the heap and push(child entry)es
+/// its children, the nearer last. An entry whose bound exceeds the heap's limit is dropped when
+/// pushed and when popped; a bound equal to the limit is searched (a tie may still win by
+/// index). A NaN bound is never pruned. The stack holds kStackSize entries: at most one pending
+/// sibling per level plus the top node.
+template <int kStackSize, class Expand>
+CA_HD void walkNearest(NearestHeap& heap, Expand&& expand) {
+    NearestEntry stack[kStackSize];
+    int top = 0;
+    stack[top++] = NearestEntry{0, 0};
+    auto push = [&](NearestEntry e) {
+        if (!(e.bound > heap.limit())) stack[top++] = e;
+    };
+    while (top > 0) {
+        const NearestEntry e = stack[--top];
+        if (e.bound > heap.limit()) continue;
+        expand(e, push);
+    }
+}
+
 }  // namespace caustica

@@ -70,30 +70,22 @@ struct KdTreeView : BallQueries<KdTreeView> {
         const uint64_t n = nodes.size();
         if (n == 0) return;
         const Float reach = segmentReach(s, maxRadius, coordinateScale);
-        struct Entry {
-            uint32_t node;
-            Float t0, t1;
-        };
-        Entry stack[kKdStackSize];
-        int top = 0;
-        stack[top++] = Entry{0, 0, s.tEnd};
-        while (top > 0) {
-            const Entry e = stack[--top];
+        walkSegmentTree<kKdStackSize>(s, [&](SegmentEntry e, auto&& push) {
             const KdNode node = nodes[e.node];
             if (sphereMeetsSegment(node.position, points.radiusOf(node.index), s)) f(node.index);
             const uint64_t left = 2 * uint64_t(e.node) + 1;
-            if (left >= n) continue;
+            if (left >= n) return;
             const int k = axisOf(e.node);
             const Float split = node.position[k];
-            Entry l{uint32_t(left), e.t0, e.t1}, r{uint32_t(left + 1), e.t0, e.t1};
+            SegmentEntry l{uint32_t(left), e.t0, e.t1}, r{uint32_t(left + 1), e.t0, e.t1};
             bool goLeft = true, goRight = left + 1 < n;
             if (split == split) {  // a NaN coordinate orders nothing: both sides
                 goLeft = s.clip(k, -kUnbounded, split + reach, l.t0, l.t1);
                 goRight = goRight && s.clip(k, split - reach, kUnbounded, r.t0, r.t1);
             }
-            if (goRight) stack[top++] = r;
-            if (goLeft) stack[top++] = l;
-        }
+            if (goRight) push(r);
+            if (goLeft) push(l);
+        });
     }
 
     /// Bounded k-nearest search (Friedman, Bentley & Finkel 1977): nearer child first; a far
@@ -104,28 +96,18 @@ struct KdTreeView : BallQueries<KdTreeView> {
     CA_HD void searchNearest(Vec3f center, NearestHeap& heap) const {
         const uint64_t n = nodes.size();
         if (n == 0) return;
-        struct Entry {
-            uint32_t node;
-            Float bound;
-        };
-        Entry stack[kKdStackSize];
-        int top = 0;
-        stack[top++] = Entry{0, 0};
-        while (top > 0) {
-            const Entry e = stack[--top];
-            if (e.bound > heap.limit()) continue;
+        walkNearest<kKdStackSize>(heap, [&](NearestEntry e, auto&& push) {
             const KdNode node = nodes[e.node];
             heap.consider(node.index, node.position, center);
             const uint64_t left = 2 * uint64_t(e.node) + 1;
-            if (left >= n) continue;
+            if (left >= n) return;
             const int k = axisOf(e.node);
             const Float diff = center[k] - node.position[k];
             const uint64_t near = diff < 0 ? left : left + 1, far = diff < 0 ? left + 1 : left;
             const Float farBound = max(e.bound, diff * diff);  // NaN: never pruned
-            if (far < n && !(farBound > heap.limit()))
-                stack[top++] = Entry{uint32_t(far), farBound};
-            if (near < n) stack[top++] = Entry{uint32_t(near), e.bound};
-        }
+            if (far < n) push(NearestEntry{uint32_t(far), farBound});
+            if (near < n) push(NearestEntry{uint32_t(near), e.bound});
+        });
     }
 };
 

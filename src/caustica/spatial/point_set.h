@@ -100,6 +100,25 @@ CA_HD_INLINE bool sphereMeetsSegment(Vec3f p, Float r, const Segment& s) {
     return segmentDistanceSquared(p, s) <= r * r;
 }
 
+/// An entry of a tree's segment walk: a node and the part [t0, t1] of the segment that can reach
+/// the spheres below it.
+struct SegmentEntry {
+    uint32_t node = 0;
+    Float t0 = 0, t1 = 0;
+};
+
+/// The depth-first segment walk of the trees (kd_tree.h, multi_hash.h), from node 0 with the
+/// whole segment: expand(entry, push) reports the node's spheres and push(child entry)es the
+/// children with their part of the segment. The stack holds kStackSize entries.
+template <int kStackSize, class Expand>
+CA_HD void walkSegmentTree(const Segment& s, Expand&& expand) {
+    SegmentEntry stack[kStackSize];
+    int top = 0;
+    stack[top++] = SegmentEntry{0, 0, s.tEnd};
+    auto push = [&](SegmentEntry e) { stack[top++] = e; };
+    while (top > 0) expand(stack[--top], push);
+}
+
 /// The largest |component| of v.
 CA_HD_INLINE Float maxAbs(Vec3f v) {
     return maxComponent(abs(v));

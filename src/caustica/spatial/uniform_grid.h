@@ -55,13 +55,9 @@ struct UniformGridView : BallQueries<UniformGridView> {
         if (center.x + r < origin.x || center.y + r < origin.y || center.z + r < origin.z ||
             center.x - r > upper.x || center.y - r > upper.y || center.z - r > upper.z)
             return;
-        const CellCoord lo = cellOf(center - Vec3f(r)), hi = cellOf(center + Vec3f(r));
-        for (int32_t z = lo.z; z <= hi.z; ++z)
-            for (int32_t y = lo.y; y <= hi.y; ++y)
-                forEachInRow(
-                    lo.x, hi.x, y, z,
-                    [&](uint32_t i) { return acceptsPoint<kSpheres>(points, i, center, radius); },
-                    f);
+        forEachInCellBox(
+            *this, cellOf(center - Vec3f(r)), cellOf(center + Vec3f(r)), kUnbounded,
+            [&](uint32_t i) { return acceptsPoint<kSpheres>(points, i, center, radius); }, f);
     }
 
     /// The grid as grid_walk.h sees it: cells along one axis, clamped to the grid.
@@ -76,6 +72,12 @@ struct UniformGridView : BallQueries<UniformGridView> {
     }
     /// report(i) for the points i of cells x0..x1 of row (y, z) with test(i): one contiguous
     /// range of `order` (none when x1 < x0).
+    /// report(i) for every point i with test(i), once each, in index order.
+    template <class Test, class Report>
+    CA_HD void forEachPoint(Test&& test, Report&& report) const {
+        for (uint32_t i = 0; i < uint32_t(cells.order.size()); ++i)
+            if (test(i)) report(i);
+    }
     template <class Test, class Report>
     CA_HD void forEachInRow(int32_t x0, int32_t x1, int32_t y, int32_t z, Test&& test,
                             Report&& report) const {

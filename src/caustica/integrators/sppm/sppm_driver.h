@@ -39,6 +39,7 @@
 #include "caustica/spatial/brute_force.h"
 #include "caustica/spatial/hash_grid.h"
 #include "caustica/spatial/kd_tree.h"
+#include "caustica/spatial/multi_hash.h"
 #include "caustica/spatial/uniform_grid.h"
 
 namespace caustica {
@@ -56,6 +57,15 @@ struct SppmStats {
     double eyeSeconds = 0, gridSeconds = 0, photonSeconds = 0, gatherSeconds = 0, updateSeconds = 0;
 };
 
+/// Host copies of what the last iteration's lookups were built over (bench/spatial_bench: the
+/// point sets of real scenes): the visible points' positions and radii, and, with direction
+/// "gather", the stored photons' positions (empty with "deposit", which stores no photon).
+struct SppmLookupInputs {
+    std::vector<Vec3f> photons;
+    std::vector<Vec3f> visiblePoints;
+    std::vector<Float> visibleRadii;
+};
+
 /// What the session sees of a driver (either device).
 class SppmDriverBase {
 public:
@@ -67,6 +77,8 @@ public:
     virtual std::vector<SppmPixel> pixels() const = 0;
     /// Replaces the statistics and the iteration count (a checkpoint's).
     virtual void restore(const std::vector<SppmPixel>& pixels, uint64_t iterations) = 0;
+    /// The point sets of the last iteration (empty before the first).
+    virtual SppmLookupInputs lookupInputs() const = 0;
     const SppmStats& stats() const { return stats_; }
     const SppmSettings& settings() const { return settings_; }
     int width() const { return width_; }
@@ -90,6 +102,7 @@ void withStructure(Exec exec, PhotonStructure kind, const PointSet& points, F&& 
     switch (kind) {
         case PhotonStructure::Grid: f(UniformGrid::build(exec, points)); return;
         case PhotonStructure::KdTree: f(KdTree::build(exec, points)); return;
+        case PhotonStructure::MultiHash: f(MultiHash::build(exec, points)); return;
         case PhotonStructure::Brute: f(BruteForce::build(exec, points)); return;
         case PhotonStructure::Hash: f(HashGrid::build(exec, points)); return;
     }
@@ -181,6 +194,20 @@ public:
         // ppm: the hitpoints are regenerated from the same streams; their Ld is in the statistics.
         hitpointsReady_ = false;
         addLd_ = settings_.mapper != PhotonMapper::Ppm || iterations == 0;
+    }
+
+    SppmLookupInputs lookupInputs() const override {
+        SppmLookupInputs in;
+        if (stats_.iterations == 0 && !hitpointsReady_) return in;
+        in.visiblePoints = positions_.toHost();
+        in.visibleRadii = radii_.toHost();
+        in.visiblePoints.resize(visibleCount_);
+        in.visibleRadii.resize(visibleCount_);
+        if (settings_.direction == PhotonDirection::Gather && photonPositions_.size() > 0) {
+            in.photons = photonPositions_.toHost();
+            in.photons.resize(size_t(stats_.storedPhotons));
+        }
+        return in;
     }
 
 private:

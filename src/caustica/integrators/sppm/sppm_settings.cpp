@@ -27,11 +27,13 @@ SppmSettings readSppmSettings(IntegratorParams& p, PhotonMapper mapper) {
     if (!(rough >= 0 && rough <= 1)) p.fail("roughness_threshold", "must be in [0, 1] (a microfacet alpha)");
     s.roughnessThreshold = Float(rough);
     s.maxPasses = uint64_t(p.getInt("max_passes", 0, 0, int64_t(1) << 40, "must be >= 0 (0: the sample count)"));
-    const std::string structure = p.getString("structure", "hash", {"hash", "grid", "kdtree", "brute"});
-    s.structure = structure == "grid"     ? PhotonStructure::Grid
-                  : structure == "kdtree" ? PhotonStructure::KdTree
-                  : structure == "brute"  ? PhotonStructure::Brute
-                                          : PhotonStructure::Hash;
+    // Default: the uniform grid, the fastest measured (docs/PHOTON_LOOKUP.md, "Measurements").
+    const std::string structure = p.getString("structure", "grid", {"hash", "grid", "kdtree", "multihash", "brute"});
+    s.structure = structure == "hash"        ? PhotonStructure::Hash
+                  : structure == "kdtree"    ? PhotonStructure::KdTree
+                  : structure == "multihash" ? PhotonStructure::MultiHash
+                  : structure == "brute"     ? PhotonStructure::Brute
+                                             : PhotonStructure::Grid;
     // Default: gather, the faster on cornell-water (docs/SPPM.md, "Measured").
     s.direction = p.getString("direction", "gather", {"deposit", "gather"}) == "deposit" ? PhotonDirection::Deposit
                                                                                           : PhotonDirection::Gather;
@@ -57,7 +59,7 @@ std::vector<IntegratorOption> commonOptions() {
         {"--sppm-roughness", "roughness_threshold",
          "photon mapping: microfacet lobes with alpha below this are specular (default 0: delta only)"},
         {"--sppm-passes", "max_passes", "photon mapping: iterations when --spp is not given (default: the sample count)"},
-        {"--sppm-structure", "structure", "photon mapping: lookup structure, hash, grid, kdtree or brute (default hash)"},
+        {"--sppm-structure", "structure", "photon mapping: lookup structure, hash, grid, kdtree, multihash or brute (default grid)"},
         {"--sppm-direction", "direction",
          "photon mapping: deposit (photons into visible points' spheres) or gather (stored photons) (default gather)"},
         {"--sppm-order", "hitpoint_order",
@@ -92,10 +94,11 @@ Float sppmAutoRadius(const Scene& scene) {
 
 const char* radiusScheduleName(RadiusSchedule s) { return s == RadiusSchedule::Global ? "global" : "local"; }
 const char* photonStructureName(PhotonStructure s) {
-    return s == PhotonStructure::Grid     ? "grid"
-           : s == PhotonStructure::KdTree ? "kdtree"
-           : s == PhotonStructure::Brute  ? "brute"
-                                          : "hash";
+    return s == PhotonStructure::Grid        ? "grid"
+           : s == PhotonStructure::KdTree    ? "kdtree"
+           : s == PhotonStructure::MultiHash ? "multihash"
+           : s == PhotonStructure::Brute     ? "brute"
+                                             : "hash";
 }
 const char* photonDirectionName(PhotonDirection d) { return d == PhotonDirection::Gather ? "gather" : "deposit"; }
 const char* hitpointOrderName(HitpointOrder o) {

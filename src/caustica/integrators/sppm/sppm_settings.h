@@ -18,7 +18,7 @@
 // |                    |                       | specular: no visible point, no deposit (0: delta only)|
 // | max_passes         | --sppm-passes         | iterations when --spp is not given (0: the sampler's  |
 // |                    |                       | sample_count)                                         |
-// | structure          | --sppm-structure      | lookup structure: hash, grid, kdtree or brute (hash)  |
+// | structure          | --sppm-structure      | hash, grid, kdtree, multihash or brute (grid)         |
 // | direction          | --sppm-direction      | deposit: photons add into the visible points' spheres |
 // |                    |                       | (no photon storage); gather: photons are stored and   |
 // |                    |                       | each visible point gathers them (gather)              |
@@ -54,7 +54,7 @@ inline constexpr uint32_t kPpmMaxHitpoints = 256;
 
 enum class PhotonMapper { Sppm, Ppm };
 enum class RadiusSchedule { Local, Global };
-enum class PhotonStructure { Hash, Grid, KdTree, Brute };
+enum class PhotonStructure { Hash, Grid, KdTree, MultiHash, Brute };
 enum class PhotonDirection { Deposit, Gather };
 enum class HitpointOrder { None, Morton, Kmeans };  // sppm_order.h
 
@@ -67,7 +67,7 @@ struct SppmSettings {
     RadiusSchedule radiusSchedule = RadiusSchedule::Local;
     Float roughnessThreshold = 0;
     uint64_t maxPasses = 0;                   // 0: the sampler's sample_count
-    PhotonStructure structure = PhotonStructure::Hash;
+    PhotonStructure structure = PhotonStructure::Grid;
     PhotonDirection direction = PhotonDirection::Gather;
     HitpointOrder hitpointOrder = HitpointOrder::Morton;
     bool sortPhotons = true;

@@ -35,8 +35,7 @@ protected:
     }
 };
 
-using Structures = ::testing::Types<UniformGrid, HashGrid, KdTree, MultiHash, MultiHashSmallLeaves, MultiHashCoarserCells>;
-TYPED_TEST_SUITE(PointQueryTest, Structures);
+TYPED_TEST_SUITE(PointQueryTest, IndexedStructures);
 
 TYPED_TEST(PointQueryTest, RandomPoints) {
     const auto points = randomPoints(3000, 1);

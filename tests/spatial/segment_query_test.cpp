@@ -75,8 +75,7 @@ protected:
     }
 };
 
-using Structures = ::testing::Types<UniformGrid, HashGrid, KdTree, MultiHash, MultiHashSmallLeaves, MultiHashCoarserCells>;
-TYPED_TEST_SUITE(SegmentQueryTest, Structures);
+TYPED_TEST_SUITE(SegmentQueryTest, IndexedStructures);
 
 TYPED_TEST(SegmentQueryTest, RandomSegmentsVariedRadii) {
     const auto centers = randomPoints(2000, 61);

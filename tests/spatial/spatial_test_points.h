@@ -225,4 +225,8 @@ CAUSTICA_STRUCTURE_NAME(UniformGrid)
 CAUSTICA_STRUCTURE_NAME(HashGrid)
 #undef CAUSTICA_STRUCTURE_NAME
 
+/// The structures the query tests compare with BruteForce (typed test suites).
+using IndexedStructures =
+    ::testing::Types<UniformGrid, HashGrid, KdTree, MultiHash, MultiHashSmallLeaves, MultiHashCoarserCells>;
+
 }  // namespace caustica::test

@@ -27,8 +27,7 @@ protected:
     }
 };
 
-using Structures = ::testing::Types<UniformGrid, HashGrid, KdTree, MultiHash, MultiHashSmallLeaves, MultiHashCoarserCells>;
-TYPED_TEST_SUITE(SphereCoverTest, Structures);
+TYPED_TEST_SUITE(SphereCoverTest, IndexedStructures);
 
 TYPED_TEST(SphereCoverTest, VariedRadii) {
     const auto centers = randomPoints(3000, 21);

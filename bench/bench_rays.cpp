@@ -1,5 +1,5 @@
-// bench_rays.cpp — single-threaded ray throughput: the own BVH's traversals (full stack, short
-// stack, stackless) against Embree on the same rays.
+// bench_rays.cpp — ray throughput: the own BVH's traversals (full stack, short stack, stackless)
+// against Embree on the same rays, on one thread or several.
 //
 // Ray sets, precomputed once per scene and shared by both backends:
 //   camera  one primary ray per pixel centre (closest hit)
@@ -8,11 +8,14 @@
 // Scenes: a procedural displaced icosphere (327,680 triangles) on a ground quad, and
 // scenes/cornell-water/scene.xml when it loads (skipped with the reason printed otherwise).
 //
-//   bench_rays [--benchmark_filter=...] [--benchmark_repetitions=N]
-// ends with a table: scene, ray type, Mrays/s of each BVH traversal and of Embree, and the
-// ratios of the short-stack and stackless rates to the full-stack one.
+//   bench_rays [--threads=1,2] [--benchmark_filter=...] [--benchmark_repetitions=N]
+// ends with a table: scene, ray type, threads, Mrays/s of each BVH traversal and of Embree, and
+// the ratios of the short-stack and stackless rates to the full-stack one. --threads lists the
+// thread counts to run every benchmark with (default 1); with T threads each traces every T-th
+// block of rays (see traceRays) and the rate is rays per second of wall time.
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <map>
 #include <memory>
@@ -57,29 +60,60 @@ void makeRays(BenchScene& b) {
 
 std::vector<std::unique_ptr<BenchScene>> gScenes;
 
+/// Rays per block handed to one thread: large enough that neighbouring (coherent) rays stay on
+/// one thread, small enough that both threads get a similar mix of cheap and expensive rays.
+constexpr size_t kRaysPerBlock = 256;
+
+/// Traces the benchmark's share of `rays`: with T threads, thread i takes blocks i, i + T, ...
+/// Each thread counts its hits in a local variable (no shared cache line is written).
 template <class Intersector>
 void traceRays(benchmark::State& state, const Intersector& it, const std::vector<Ray>& rays,
                bool anyHit) {
-    uint64_t hits = 0;
+    const size_t threads = size_t(state.threads()), first = size_t(state.thread_index());
+    uint64_t hits = 0, traced = 0;
     for (auto _ : state) {
-        hits = 0;
-        if (anyHit) {
-            for (const Ray& ray : rays) hits += it.occluded(ray);
-        } else {
-            for (const Ray& ray : rays) {
-                Hit hit;
-                hits += it.intersect(ray, hit);
+        hits = traced = 0;
+        for (size_t block = first * kRaysPerBlock; block < rays.size();
+             block += threads * kRaysPerBlock) {
+            const size_t end = std::min(rays.size(), block + kRaysPerBlock);
+            traced += end - block;
+            if (anyHit) {
+                for (size_t i = block; i < end; ++i) hits += it.occluded(rays[i]);
+            } else {
+                for (size_t i = block; i < end; ++i) {
+                    Hit hit;
+                    hits += it.intersect(rays[i], hit);
+                }
             }
         }
         benchmark::DoNotOptimize(hits);
     }
-    state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(rays.size()));
-    state.counters["rays/s"] =
-        benchmark::Counter(double(rays.size()), benchmark::Counter::kIsIterationInvariantRate);
+    // Counters are summed over the threads and rates divided by the (wall, see registerScene)
+    // time: rays/s is the rate of all threads together, hit% that of the whole set.
+    const double total = double(state.iterations()) * double(traced);
+    state.SetItemsProcessed(int64_t(total));
+    state.counters["rays/s"] = benchmark::Counter(total, benchmark::Counter::kIsRate);
     state.counters["hit%"] = 100.0 * double(hits) / double(max<size_t>(rays.size(), 1));
 }
 
 double maxOf(const std::vector<double>& v) { return *std::max_element(v.begin(), v.end()); }
+
+/// Thread counts every benchmark runs with (--threads).
+std::vector<int> gThreadCounts = {1};
+
+/// Registers `run` once per thread count. One thread is timed in CPU time (robust against other
+/// processes on a shared machine), several in wall time, so that rays/s is their total rate.
+template <class Run>
+void registerRays(const std::string& name, const Run& run) {
+    for (const int threads : gThreadCounts) {
+        auto* bench = benchmark::RegisterBenchmark(name.c_str(), run)
+                          ->Unit(benchmark::kMillisecond)
+                          ->MinTime(1.0)
+                          ->ComputeStatistics("max", maxOf)
+                          ->Threads(threads);
+        if (threads > 1) bench->UseRealTime();
+    }
+}
 
 void registerScene(const BenchScene& b) {
     const std::pair<const char*, const std::vector<Ray>*> sets[] = {
@@ -87,28 +121,52 @@ void registerScene(const BenchScene& b) {
     for (const auto& [type, rays] : sets) {
         const bool anyHit = std::string(type) == "shadow";
         const std::string prefix = "rays/" + b.name + "/" + type + "/";
-        auto add = [&](const std::string& name, auto intersector) {
-            benchmark::RegisterBenchmark((prefix + name).c_str(),
-                                         [&b, rays, anyHit, intersector](auto& st) {
-                                             auto it = intersector;
-                                             it.bvh = b.bvh.view();
-                                             it.scene = b.scene.view();
-                                             traceRays(st, it, *rays, anyHit);
-                                         })
-                ->Unit(benchmark::kMillisecond)
-                ->MinTime(1.0)
-                ->ComputeStatistics("max", maxOf);
+        auto addBvh = [&](const std::string& name, auto intersector) {
+            intersector.bvh = b.bvh.view();
+            intersector.scene = b.scene.view();
+            registerRays(prefix + name, [intersector, rays, anyHit](benchmark::State& st) {
+                traceRays(st, intersector, *rays, anyHit);
+            });
         };
-        add("bvh", BvhIntersectorT<BvhTraversal::Stack>{});
-        add("bvh-short", BvhIntersectorT<BvhTraversal::ShortStack>{});
-        add("bvh-stackless", BvhIntersectorT<BvhTraversal::Stackless>{});
-        benchmark::RegisterBenchmark(
-            (prefix + "embree").c_str(),
-            [&b, rays, anyHit](auto& st) { traceRays(st, b.embree->intersector(), *rays, anyHit); })
-            ->Unit(benchmark::kMillisecond)
-            ->MinTime(1.0)
-            ->ComputeStatistics("max", maxOf);
+        addBvh("bvh", BvhIntersectorT<BvhTraversal::Stack>{});
+        addBvh("bvh-short", BvhIntersectorT<BvhTraversal::ShortStack>{});
+        addBvh("bvh-stackless", BvhIntersectorT<BvhTraversal::Stackless>{});
+        registerRays(prefix + "embree", [&b, rays, anyHit](benchmark::State& st) {
+            traceRays(st, b.embree->intersector(), *rays, anyHit);
+        });
     }
+}
+
+/// Parses and removes --threads=1,2,... from argv (before Google Benchmark sees the arguments).
+void parseThreadCounts(int& argc, char** argv) {
+    const std::string flag = "--threads=";
+    int kept = 1;
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        if (arg.rfind(flag, 0) != 0) {
+            argv[kept++] = argv[i];
+            continue;
+        }
+        gThreadCounts.clear();
+        for (size_t pos = flag.size(); pos < arg.size();) {
+            const size_t comma = std::min(arg.find(',', pos), arg.size());
+            gThreadCounts.push_back(std::max(1, std::atoi(arg.substr(pos, comma - pos).c_str())));
+            pos = comma + 1;
+        }
+        if (gThreadCounts.empty()) gThreadCounts = {1};
+    }
+    argc = kept;
+}
+
+/// Resident memory of the process (Linux; 0 elsewhere): Embree reports no size of its BVH, so
+/// the bench takes the growth across its build.
+size_t residentBytes() {
+    size_t pages = 0, resident = 0;
+    if (FILE* f = std::fopen("/proc/self/statm", "r")) {
+        if (std::fscanf(f, "%zu %zu", &pages, &resident) != 2) resident = 0;
+        std::fclose(f);
+    }
+    return resident * 4096;
 }
 
 void addScene(std::string name, Scene scene) {
@@ -116,17 +174,19 @@ void addScene(std::string name, Scene scene) {
     b->name = std::move(name);
     b->scene = std::move(scene);
     b->bvh = buildBvh(b->scene);
+    const size_t rssBefore = residentBytes();
     b->embree = std::make_unique<EmbreeScene>(b->scene);
+    const size_t embreeBytes = residentBytes() - rssBefore;
     makeRays(*b);
     const BvhStats& s = b->bvh.stats;
     std::printf(
         "%s: %u triangles, %zu spheres; BVH %u nodes, depth %u, %.2f prims/leaf, SAH %.1f, "
-        "%.1f MiB, built in %.0f ms; Embree built in %.0f ms; rays: %zu camera, %zu bounce, "
-        "%zu shadow\n",
+        "%.1f MiB, built in %.0f ms; Embree built in %.0f ms, %.1f MiB (resident memory it "
+        "added); rays: %zu camera, %zu bounce, %zu shadow\n",
         b->name.c_str(), uint32_t(b->scene.triangles.size()), b->scene.spheres.size(), s.nodeCount,
         s.maxDepth, s.averageLeafSize, s.sahCost, double(s.memoryBytes) / (1 << 20),
-        s.buildMilliseconds, b->embree->buildMilliseconds(), b->camera.size(), b->bounce.size(),
-        b->shadow.size());
+        s.buildMilliseconds, b->embree->buildMilliseconds(), double(embreeBytes) / (1 << 20),
+        b->camera.size(), b->bounce.size(), b->shadow.size());
     gScenes.push_back(std::move(b));
 }
 
@@ -140,7 +200,7 @@ public:
         for (const Run& run : runs) {
             auto it = run.counters.find("rays/s");
             if (run.error_occurred || it == run.counters.end()) continue;
-            const std::string& name = run.run_name.function_name;
+            const std::string name = rateKey(run.run_name.function_name, int(run.threads));
             const int rank = run.run_type != Run::RT_Aggregate ? 1
                              : run.aggregate_name == "max"     ? 3
                              : run.aggregate_name == "median"  ? 2
@@ -156,19 +216,23 @@ public:
             }
         }
     }
-    /// rays/s of a benchmark, or a negative value if it did not run.
-    double rate(const std::string& name) const {
-        auto it = rates_.find(name);
+    /// rays/s of a benchmark with `threads` threads, or a negative value if it did not run.
+    double rate(const std::string& name, int threads) const {
+        auto it = rates_.find(rateKey(name, threads));
         return it == rates_.end() ? -1.0 : it->second.second;
     }
 
 private:
+    static std::string rateKey(const std::string& name, int threads) {
+        return name + "/threads:" + std::to_string(threads);
+    }
     std::map<std::string, std::pair<int, double>> rates_;  // name -> (source rank, rays/s)
 };
 
 }  // namespace
 
 int main(int argc, char** argv) {
+    parseThreadCounts(argc, argv);
     benchmark::Initialize(&argc, argv);
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
 
@@ -190,33 +254,35 @@ int main(int argc, char** argv) {
     TableReporter reporter;
     benchmark::RunSpecifiedBenchmarks(&reporter);
 
-    std::printf("\n%-16s %-8s %9s %9s %9s %9s %7s %7s %7s\n", "scene", "rays", "stack", "short",
-                "stackless", "Embree", "short/", "sless/", "stack/");
-    std::printf("%-16s %-8s %9s %9s %9s %9s %7s %7s %7s\n", "", "", "Mrays/s", "Mrays/s", "Mrays/s",
-                "Mrays/s", "stack", "stack", "Embree");
+    std::printf("\n%-16s %-8s %7s %9s %9s %9s %9s %7s %7s %7s\n", "scene", "rays", "threads",
+                "stack", "short", "stackless", "Embree", "short/", "sless/", "stack/");
+    std::printf("%-16s %-8s %7s %9s %9s %9s %9s %7s %7s %7s\n", "", "", "", "Mrays/s", "Mrays/s",
+                "Mrays/s", "Mrays/s", "stack", "stack", "Embree");
+    auto fixed2 = [](double v) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%.2f", v);
+        return std::string(buf);
+    };
+    // "-" for what did not run (--benchmark_filter).
+    auto rate = [&](double v) { return v < 0 ? std::string("-") : fixed2(v * 1e-6); };
+    auto ratio = [&](double a, double b) {
+        return a < 0 || b < 0 ? std::string("-") : fixed2(a / b);
+    };
     for (const auto& b : gScenes)
-        for (const char* type : {"camera", "bounce", "shadow"}) {
-            const std::string prefix = "rays/" + b->name + "/" + type + "/";
-            const double stack = reporter.rate(prefix + "bvh"),
-                         shortStack = reporter.rate(prefix + "bvh-short"),
-                         stackless = reporter.rate(prefix + "bvh-stackless"),
-                         emb = reporter.rate(prefix + "embree");
-            if (stack < 0 && shortStack < 0 && stackless < 0 && emb < 0) continue;
-            // "-" for what did not run (--benchmark_filter).
-            auto fixed2 = [](double v) {
-                char buf[32];
-                std::snprintf(buf, sizeof buf, "%.2f", v);
-                return std::string(buf);
-            };
-            auto rate = [&](double v) { return v < 0 ? std::string("-") : fixed2(v * 1e-6); };
-            auto ratio = [&](double a, double b2) {
-                return a < 0 || b2 < 0 ? std::string("-") : fixed2(a / b2);
-            };
-            std::printf("%-16s %-8s %9s %9s %9s %9s %7s %7s %7s\n", b->name.c_str(), type,
-                        rate(stack).c_str(), rate(shortStack).c_str(), rate(stackless).c_str(),
-                        rate(emb).c_str(), ratio(shortStack, stack).c_str(),
-                        ratio(stackless, stack).c_str(), ratio(stack, emb).c_str());
-        }
+        for (const char* type : {"camera", "bounce", "shadow"})
+            for (const int threads : gThreadCounts) {
+                const std::string prefix = "rays/" + b->name + "/" + type + "/";
+                const double stack = reporter.rate(prefix + "bvh", threads),
+                             shortStack = reporter.rate(prefix + "bvh-short", threads),
+                             stackless = reporter.rate(prefix + "bvh-stackless", threads),
+                             emb = reporter.rate(prefix + "embree", threads);
+                if (stack < 0 && shortStack < 0 && stackless < 0 && emb < 0) continue;
+                std::printf("%-16s %-8s %7d %9s %9s %9s %9s %7s %7s %7s\n", b->name.c_str(), type,
+                            threads, rate(stack).c_str(), rate(shortStack).c_str(),
+                            rate(stackless).c_str(), rate(emb).c_str(),
+                            ratio(shortStack, stack).c_str(), ratio(stackless, stack).c_str(),
+                            ratio(stack, emb).c_str());
+            }
     benchmark::Shutdown();
     return 0;
 }

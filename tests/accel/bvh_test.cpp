@@ -109,6 +109,30 @@ TEST_P(BvhVsBruteForce, SceneArraysAndOtherSettings) {
     expectMatchesBruteForce(test::makeRandomScene(GetParam().scene), options, 2000, 29);
 }
 
+TEST_P(BvhVsBruteForce, FourWideNodes) {
+    BvhBuildOptions options;
+    options.width = 4;
+    expectMatchesBruteForce(test::makeRandomScene(GetParam().scene), options, 1500, 41);
+}
+
+TEST_P(BvhVsBruteForce, LargeLeavesInGroupsOfFour) {
+    // Leaves of up to 16 primitives: the host tests them four at a time (triangle4.h), including
+    // a last group of one to three and groups that hold spheres.
+    BvhBuildOptions options;
+    options.maxLeafSize = 16;
+    options.traversalCost = 8;
+    expectMatchesBruteForce(test::makeRandomScene(GetParam().scene), options, 1500, 43);
+}
+
+TEST_P(BvhVsBruteForce, SahPerPrimitive) {
+    // leafGroup 1: the SAH of the 4-wide BVH before group tests (leaves of mixed sizes).
+    BvhBuildOptions options;
+    options.leafGroup = 1;
+    options.traversalCost = 1;
+    options.maxLeafSize = 8;
+    expectMatchesBruteForce(test::makeRandomScene(GetParam().scene), options, 1500, 47);
+}
+
 TEST_P(BvhVsBruteForce, OneLeafPerPrimitiveBinary) {
     // The deepest trees the builder makes: backtracking climbs through many levels.
     BvhBuildOptions options;
@@ -235,7 +259,7 @@ TEST(Bvh, StatisticsAndStructureAreConsistent) {
     const BvhStats& s = bvh.stats;
     const uint32_t n = scene.numPrimitives();
     EXPECT_EQ(s.nodeCount, bvh.nodes.size());
-    EXPECT_EQ(s.width, 4u);
+    EXPECT_EQ(s.width, uint32_t(BvhNode::kWidth));
     EXPECT_LE(s.maxStack, uint32_t(kBvhStackSize));
     EXPECT_GT(s.nodeCount, s.leafCount / 4);
     EXPECT_LT(s.nodeCount, s.leafCount);  // most nodes have more than two children
@@ -265,7 +289,8 @@ TEST(Bvh, StatisticsAndStructureAreConsistent) {
     ASSERT_EQ(bvh.parents.size(), bvh.nodes.size());
     EXPECT_EQ(bvh.parents[0], kBvhNoParent);
     for (uint32_t i = 1; i < bvh.nodes.size(); ++i) {
-        const uint32_t parent = bvh.parents[i] >> 2, slot = bvh.parents[i] & 3u;
+        const uint32_t parent = bvh.parents[i] >> kBvhSlotBits;
+        const uint32_t slot = bvh.parents[i] & ((1u << kBvhSlotBits) - 1);
         ASSERT_LT(parent, i);
         const BvhNode& p = bvh.nodes[parent];
         EXPECT_FALSE(p.isEmpty(int(slot)));
@@ -292,7 +317,7 @@ TEST(Bvh, BinaryWidthGivesTwoChildrenPerNode) {
     EXPECT_EQ(bvh.stats.nodeCount, bvh.stats.leafCount - 1);  // a full binary tree
     for (const BvhNode& node : bvh.nodes) {
         EXPECT_FALSE(node.isEmpty(1));
-        EXPECT_TRUE(node.isEmpty(2) && node.isEmpty(3));
+        for (int k = 2; k < BvhNode::kWidth; ++k) EXPECT_TRUE(node.isEmpty(k));
     }
 }
 

@@ -1,4 +1,4 @@
-// bvh.h — the own bounding volume hierarchy: flat 4-wide node layout shared by CPU and GPU
+// bvh.h — the own bounding volume hierarchy: flat 8-wide node layout shared by CPU and GPU
 // traversal, and the binned-SAH builder that runs on the host (bvh_build.cpp).
 #pragma once
 
@@ -23,11 +23,14 @@ inline constexpr int kBvhStackSize = 64;
 inline constexpr int kBvhShortStackSize = 8;
 /// Value of Bvh::parents[0]: the root has no parent.
 inline constexpr uint32_t kBvhNoParent = ~0u;
+/// Low bits of a parent link (Bvh::parents) that hold the child slot.
+inline constexpr int kBvhSlotBits = 3;
 
-/// One node of the 4-wide BVH: the boxes and links of up to four children, 128 bytes (two cache
-/// lines, fetched together by the adjacent-line prefetcher). Boxes are stored axis by axis (SoA),
-/// so the four slab tests are plain loops that the compiler vectorises on the CPU, while the GPU
-/// runs them as scalar code. Nodes are in depth-first order, nodes[0] is the root.
+/// One node of the 8-wide BVH: the boxes and links of up to eight children, 256 bytes (four cache
+/// lines). Boxes are stored axis by axis (SoA), so the eight slab tests run as two 4-wide SSE
+/// halves on the CPU (Float4, simd4.h), while the GPU runs them as scalar code. `hi` follows `lo`
+/// directly, so a ray can address the near plane of an axis as lo or hi by one index
+/// (bvh_traversal.h). Nodes are in depth-first order, nodes[0] is the root.
 ///
 /// Child slot k is
 ///   a leaf          count[k] > 0: primitives primIndices[offset[k], offset[k] + count[k])
@@ -39,7 +42,7 @@ inline constexpr uint32_t kBvhNoParent = ~0u;
 /// area first (Wald, Benthin and Boulos, "Getting Rid of Packets: Efficient SIMD Single-Ray
 /// Traversal using Multi-branching BVHs", IEEE RT 2008).
 struct alignas(64) BvhNode {
-    static constexpr int kWidth = 4;
+    static constexpr int kWidth = 8;
     float lo[3][kWidth];  // lo[axis][child]
     float hi[3][kWidth];
     uint32_t offset[kWidth];  // leaf: first primitive; inner node: node index
@@ -51,7 +54,10 @@ struct alignas(64) BvhNode {
         return Bounds3f{Vec3f(lo[0][k], lo[1][k], lo[2][k]), Vec3f(hi[0][k], hi[1][k], hi[2][k])};
     }
 };
-static_assert(sizeof(BvhNode) == 128, "BvhNode must stay 128 bytes");
+static_assert(sizeof(BvhNode) == 256, "BvhNode must stay 256 bytes");
+static_assert(offsetof(BvhNode, hi) == offsetof(BvhNode, lo) + sizeof(BvhNode::lo),
+              "the traversal addresses lo and hi as one array");
+static_assert((1 << kBvhSlotBits) >= BvhNode::kWidth, "parent links must hold any slot");
 
 /// Primitive data in leaf order, precomputed for traversal so that a leaf test reads one contiguous
 /// 40-byte record instead of an index and three scattered vertices. Triangle: p0 = vertex 0,
@@ -70,9 +76,9 @@ struct BvhView {
     Span<const BvhNode> nodes;
     Span<const uint32_t> primIndices;  // leaf order -> primitive id (triangles first, then spheres)
     Span<const BvhPrimitive> prims;    // leaf order, parallel to primIndices; optional
-    /// Parent links, parallel to nodes: (parent node << 2) | child slot, kBvhNoParent for the
-    /// root. Only the stackless and short-stack traversals read them; without them these find
-    /// a node's parent by descending from the root (correct, but one node fetch per level).
+    /// Parent links, parallel to nodes: (parent node << kBvhSlotBits) | child slot, kBvhNoParent
+    /// for the root. Only the stackless and short-stack traversals read them; without them these
+    /// find a node's parent by descending from the root (correct, but one node fetch per level).
     Span<const uint32_t> parents = {};
 };
 
@@ -81,11 +87,13 @@ struct BvhView {
 /// tree that is then collapsed to `width` children per node.
 struct BvhBuildOptions {
     int binCount = 32;                 // SAH bins per axis (Wald 2007), 2..256
-    int maxLeafSize = 8;               // larger nodes are always split
-    float traversalCost = 1.0f;        // cost of one binary node visit (two child box tests)
-    float intersectionCost = 1.0f;     // cost of one primitive test
-    int width = 4;                     // children per node, 2..4. With 4, a tree whose traversal
-                                       // could overflow the stack is rebuilt with 2 (never seen)
+    int maxLeafSize = 4;               // larger nodes are always split
+    float traversalCost = 2.0f;        // cost of one binary node visit (two child box tests)
+    float intersectionCost = 1.0f;     // cost of one leaf test of up to leafGroup primitives
+    int leafGroup = 4;                 // primitives a leaf test handles at once (the host tests
+                                       // four triangles with SSE, triangle4.h), 1..64
+    int width = 8;                     // children per node, 2..8. A tree whose traversal could
+                                       // overflow the stack is rebuilt narrower (never seen)
     bool precomputePrimitives = true;  // fill Bvh::prims (see BvhPrimitive)
     bool parentLinks = true;           // fill Bvh::parents (4 bytes per node; for the stackless
                                        // and short-stack traversals, see BvhTraversal)
@@ -105,7 +113,8 @@ struct BvhStats {
     double buildMilliseconds = 0;
 };
 
-/// std::allocator with a stronger alignment: nodes start on 128-byte boundaries (cache-line pairs).
+/// std::allocator with a stronger alignment: nodes start on 128-byte boundaries (cache-line pairs,
+/// which the adjacent-line prefetcher fetches together).
 template <class T, size_t Alignment>
 struct AlignedAllocator {
     using value_type = T;

@@ -3,7 +3,7 @@
 // Top-down: each node bins its primitives' centroids on all three axes, evaluates the surface area
 // heuristic at every bin boundary and partitions in place (Wald, IEEE RT 2007). Large subtrees are
 // built as parallel TBB tasks; every decision depends only on the primitives of the subtree, and
-// the binary tree is collapsed afterwards into 4-wide nodes (see BvhNode) in one depth-first pass,
+// the binary tree is collapsed afterwards into 8-wide nodes (see BvhNode) in one depth-first pass,
 // so the result does not depend on how tasks were scheduled.
 #include <algorithm>
 #include <chrono>
@@ -46,6 +46,7 @@ public:
     Builder(const BvhBuildOptions& options, std::vector<PrimRef>& refs)
         : refs_(refs), binCount_(std::clamp(options.binCount, 2, kMaxBins)),
           maxLeafSize_(std::clamp(options.maxLeafSize, 1, 1 << 24)),
+          leafGroup_(uint32_t(std::clamp(options.leafGroup, 1, 64))),
           traversalCost_(options.traversalCost), intersectionCost_(options.intersectionCost) {}
 
     std::unique_ptr<BuildNode> build(uint32_t begin, uint32_t end, int depth) const {
@@ -72,7 +73,7 @@ public:
             node->axis = maxDimension(node->bounds.diagonal());
         } else {
             const float area = node->bounds.surfaceArea();
-            const float leafCost = intersectionCost_ * float(n);
+            const float leafCost = intersectionCost_ * groups(n);
             const float splitCost = traversalCost_ + intersectionCost_ * split.cost / area;
             if (n <= uint32_t(maxLeafSize_) && (!(area > 0) || leafCost <= splitCost))
                 return makeLeaf();
@@ -97,6 +98,9 @@ public:
     }
 
 private:
+    /// Leaf tests a leaf of n primitives costs: groups of leafGroup_ are tested at once.
+    float groups(uint32_t n) const { return float((n + leafGroup_ - 1) / leafGroup_); }
+
     float binScale(const Bounds3f& cb, int axis) const {
         return float(binCount_) / (cb.hi[axis] - cb.lo[axis]);
     }
@@ -105,7 +109,8 @@ private:
         return f > 0 ? (f < float(binCount_ - 1) ? int(f) : binCount_ - 1) : 0;
     }
 
-    /// Best SAH split over all axes; cost = A_left * N_left + A_right * N_right.
+    /// Best SAH split over all axes; cost = A_left * G(N_left) + A_right * G(N_right), with G the
+    /// leaf tests of N primitives (groups()).
     Split findSplit(uint32_t begin, uint32_t end, const Bounds3f& cb) const {
         Split best;
         for (int axis = 0; axis < 3; ++axis) {
@@ -125,7 +130,7 @@ private:
             for (int b = binCount_ - 1; b > 0; --b) {
                 acc.extend(bins[b]);
                 count += counts[b];
-                rightCost[b] = count ? acc.surfaceArea() * float(count) : -1.0f;
+                rightCost[b] = count ? acc.surfaceArea() * groups(count) : -1.0f;
             }
             acc = Bounds3f();
             count = 0;
@@ -133,7 +138,7 @@ private:
                 acc.extend(bins[b - 1]);
                 count += counts[b - 1];
                 if (count == 0 || rightCost[b] < 0) continue;
-                const float cost = acc.surfaceArea() * float(count) + rightCost[b];
+                const float cost = acc.surfaceArea() * groups(count) + rightCost[b];
                 if (cost < best.cost) best = Split{axis, b, cost};
             }
         }
@@ -142,6 +147,7 @@ private:
 
     std::vector<PrimRef>& refs_;
     int binCount_, maxLeafSize_;
+    uint32_t leafGroup_;
     float traversalCost_, intersectionCost_;
 };
 
@@ -250,9 +256,10 @@ Bvh buildBvh(const Scene& scene, const BvhBuildOptions& options) {
         std::unique_ptr<BuildNode> root = Builder(options, refs).build(0, numPrims, 0);
 
         // A traversal needs at most (width - 1) stack entries per level; should a pathological
-        // tree need more than kBvhStackSize, fall back to binary nodes (one entry per level).
+        // tree need more than kBvhStackSize, fall back to narrower nodes (binary: one entry per
+        // level).
         const int width = std::clamp(options.width, 2, BvhNode::kWidth);
-        for (int w : {width, 2}) {
+        for (int w : {width, std::min(width, 4), 2}) {
             bvh.nodes.clear();
             bvh.stats = BvhStats();
             bvh.stats.width = uint32_t(w);
@@ -263,15 +270,16 @@ Bvh buildBvh(const Scene& scene, const BvhBuildOptions& options) {
         bvh.nodes.shrink_to_fit();
         root.reset();
 
-        // Links hold the node index in 30 bits; larger trees get none (their backtracking
-        // traversals then find parents by descending from the root, see bvh_traversal.h).
-        if (options.parentLinks && bvh.nodes.size() < (size_t(1) << 30)) {
+        // Links hold the node index in 32 - kBvhSlotBits bits; larger trees get none (their
+        // backtracking traversals then find parents by descending from the root, see
+        // bvh_traversal.h).
+        if (options.parentLinks && bvh.nodes.size() < (size_t(1) << (32 - kBvhSlotBits))) {
             bvh.parents.assign(bvh.nodes.size(), kBvhNoParent);
             for (uint32_t i = 0; i < uint32_t(bvh.nodes.size()); ++i) {
                 const BvhNode& node = bvh.nodes[i];
                 for (int k = 0; k < BvhNode::kWidth; ++k)
                     if (!node.isEmpty(k) && !node.isLeaf(k))
-                        bvh.parents[node.offset[k]] = (i << 2) | uint32_t(k);
+                        bvh.parents[node.offset[k]] = (i << kBvhSlotBits) | uint32_t(k);
             }
         }
 

@@ -1,29 +1,32 @@
 // bvh_traversal.h — closest-hit and any-hit BVH traversal, one source for CPU and GPU.
 //
-// Stack-based, no recursion, no allocation: at an inner node all (up to four) child boxes are
-// tested, the nearest child hit is visited next and the others are pushed far to near together with
-// their entry distances, so that they are skipped on pop when a closer hit has been found
-// meanwhile.
+// Stack-based, no recursion, no allocation: at an inner node all (up to eight) child boxes are
+// tested, the first child hit in visiting order (orderChildren: nearest first for closest-hit
+// queries, slot order for any-hit ones) is visited next and the others are pushed with their entry
+// distances, so that they are skipped on pop when a closer hit has been found meanwhile.
 //
 // Two more variants share the slab tests, the child ordering and the leaf step (BvhTraversal): a
 // short-stack traversal, whose stack is a small ring buffer that drops its oldest entries when full
 // and, once it runs empty after such a loss, continues by backtracking through parent links
 // (Bvh::parents); and the stackless traversal, the same with no stack at all. Both follow the
 // parent-link scheme of Hapala et al., "Efficient Stack-less BVH Traversal for Ray Tracing" (SCCG
-// 2011), on 4-wide nodes as in Afra and Szirmay-Kalos, "Stackless Multi-BVH Traversal for CPU, MIC
+// 2011), on wide nodes as in Afra and Szirmay-Kalos, "Stackless Multi-BVH Traversal for CPU, MIC
 // and GPU Ray Tracing" (CGF 33(1), 2014), with the children of a node visited in the same order as
 // the stack traversal.
 //
-// Choices measured with bench/bench_rays.cpp (docs/PERFORMANCE.md): 4-wide nodes with SoA boxes
-// (1.3-1.7x faster than the binary layout they are collapsed from); the next node chosen with
-// branches rather than selects (a select makes the next fetch wait for the box tests); ordering by
-// entry distance rather than by direction signs; precomputed leaf-order primitives.
+// Choices measured with bench/bench_rays.cpp (docs/PERFORMANCE.md): 8-wide nodes with SoA boxes
+// tested as two SSE halves, near/far planes chosen per ray; the next node chosen with branches
+// rather than selects (a select makes the next fetch wait for the box tests); ordering by entry
+// distance rather than by direction signs (closest hit), no ordering at all (any hit);
+// precomputed leaf-order primitives, tested four at a time on the host (triangle4.h).
 #pragma once
 
 #include <cstdint>
 
 #include "caustica/accel/bvh.h"
 #include "caustica/accel/primitive_intersect.h"
+#include "caustica/accel/simd4.h"
+#include "caustica/accel/triangle4.h"
 #include "caustica/scene/ray.h"
 #include "caustica/scene/scene.h"
 
@@ -31,67 +34,151 @@ namespace caustica {
 namespace bvh_detail {
 
 /// Per-ray data for the slab test. Zero (and denormal) direction components give an inverse of
-/// +-FLT_MAX instead of infinity, so that (lo - o) * invD is never 0 * inf = NaN.
+/// +-FLT_MAX instead of infinity, so that (lo - o) * invD is never 0 * inf = NaN. nearPlane[axis]
+/// and farPlane[axis] index the node's lo-then-hi plane array (BvhNode) at the plane of `axis`
+/// that the ray meets first and last, chosen by the sign of invD: since lo <= hi, the near plane's
+/// distance is exactly the min of the two that the slab test would otherwise compute (and the far
+/// plane's the max), so choosing ahead saves the min/max without changing a bit.
 struct TraversalRay {
-    Vec3f o, invD;
-    CA_HD explicit TraversalRay(const Ray& ray) : o(ray.o) {
-        for (int i = 0; i < 3; ++i) {
-            const Float inv = 1 / ray.d[i];
-            invD[i] = std::fabs(inv) <= kInfinity ? inv : std::copysign(kInfinity, ray.d[i]);
+    Float4 o[3], d[3], invD[3];  // each component in all four lanes
+    int nearPlane[3], farPlane[3];
+    CA_BVH_INLINE explicit TraversalRay(const Ray& ray) {
+        constexpr int W = BvhNode::kWidth;
+        for (int axis = 0; axis < 3; ++axis) {
+            const Float d = ray.d[axis], inv = 1 / d;
+            const Float invDAxis = std::fabs(inv) <= kInfinity ? inv : std::copysign(kInfinity, d);
+            o[axis] = Float4::broadcast(ray.o[axis]);
+            this->d[axis] = Float4::broadcast(d);
+            invD[axis] = Float4::broadcast(invDAxis);
+            const bool negative = std::signbit(invDAxis);
+            nearPlane[axis] = (negative ? 3 * W : 0) + axis * W;
+            farPlane[axis] = (negative ? 0 : 3 * W) + axis * W;
         }
     }
 };
 
-/// Slab tests (Kay and Kajiya, "Ray Tracing Complex Scenes", SIGGRAPH 1986) of the four child
-/// boxes of `node` against [0, tMax]. Returns a bit mask of the children hit and their entry
+/// Slab tests (Kay and Kajiya, "Ray Tracing Complex Scenes", SIGGRAPH 1986) of the child boxes of
+/// `node` against [0, tMax], four at a time. Returns a bit mask of the children hit and their entry
 /// distances. The exit distance is enlarged by 1 + 2 gamma(3) so that rounding never culls a box
 /// the ray touches (Ize, "Robust BVH Ray Traversal", JCGT 2(2), 2013; as pbrt-v4 does). Empty
 /// slots have NaN boxes, for which every comparison fails.
-CA_HD_INLINE uint32_t intersectChildren(const BvhNode& node, const TraversalRay& r, Float tMax,
-                                        Float tEntry[BvhNode::kWidth]) {
+CA_BVH_INLINE uint32_t intersectChildren(const BvhNode& node, const TraversalRay& r, Float tMax,
+                                         Float tEntry[BvhNode::kWidth]) {
     constexpr Float kRobustScale = 1 + 2 * (3 * 0x1p-24f) / (1 - 3 * 0x1p-24f);
-    const Float o[3] = {r.o.x, r.o.y, r.o.z}, invD[3] = {r.invD.x, r.invD.y, r.invD.z};
-    Float tExit[BvhNode::kWidth];
-    // Straight-line loops over the four children: vectorised on the CPU (4-wide SSE).
-    for (int k = 0; k < BvhNode::kWidth; ++k) {
-        Float t0[3], t1[3];
-        for (int axis = 0; axis < 3; ++axis) {
-            t0[axis] = (node.lo[axis][k] - o[axis]) * invD[axis];
-            t1[axis] = (node.hi[axis][k] - o[axis]) * invD[axis];
-        }
-        // tEntry is not clamped to 0: it only orders and culls subtrees, which a negative value
-        // does correctly, and the overlap test below checks tExit >= 0 instead.
-        tEntry[k] = max(max(min(t0[0], t1[0]), min(t0[1], t1[1])), min(t0[2], t1[2]));
-        tExit[k] = min(min(max(t0[0], t1[0]), max(t0[1], t1[1])), max(t0[2], t1[2])) * kRobustScale;
-    }
+    const float* planes = &node.lo[0][0];  // lo[3][kWidth], then hi[3][kWidth]
+    const Float4 robustScale = Float4::broadcast(kRobustScale), limit = Float4::broadcast(tMax),
+                 zero = Float4::broadcast(0);
     uint32_t mask = 0;
-    for (int k = 0; k < BvhNode::kWidth; ++k)
-        mask |= uint32_t((tEntry[k] <= min(tExit[k], tMax)) & (tExit[k] >= 0)) << k;
+    for (int k = 0; k < BvhNode::kWidth; k += 4) {
+        auto distance = [&](int plane, int axis) {  // to the planes `plane` of children k..k+3
+            return (Float4::load(planes + plane + k) - r.o[axis]) * r.invD[axis];
+        };
+        Float4 entry = distance(r.nearPlane[0], 0), exit = distance(r.farPlane[0], 0);
+        for (int axis = 1; axis < 3; ++axis) {
+            entry = max(entry, distance(r.nearPlane[axis], axis));
+            exit = min(exit, distance(r.farPlane[axis], axis));
+        }
+        exit = exit * robustScale;
+        // tEntry is not clamped to 0: it only orders and culls subtrees, which a negative value
+        // does correctly, and the overlap test checks 0 <= exit instead.
+        entry.store(tEntry + k);
+        mask |= (lessEqualMask(entry, min(exit, limit)) & lessEqualMask(zero, exit)) << k;
+    }
     return mask;
 }
 
-/// Orders the children in `mask` (not empty) front to back by entry distance (insertion sort of
-/// <= 4; ties keep slot order), hands the farther ones to push(slot), far to near, and returns the
-/// slot of the nearest, which is visited next.
-template <class Push>
-CA_HD_INLINE int orderChildren(uint32_t mask, const Float* tEntry, Push&& push) {
+/// Orders the children in `mask` (not empty), hands all but the first to push(slot), last first,
+/// and returns the first, which is visited next. Closest-hit queries go front to back by entry
+/// distance (insertion sort; ties keep slot order). Any-hit queries take the children in slot
+/// order: they may stop at any hit, so ordering buys them nothing (sorting cost 20% of the shadow
+/// rays' rate, docs/PERFORMANCE.md).
+template <bool AnyHit, class Push>
+CA_BVH_INLINE int orderChildren(uint32_t mask, const Float* tEntry, Push&& push) {
+    if ((mask & (mask - 1)) == 0) return lowestBit(mask);  // one child: nothing to order
     int order[BvhNode::kWidth];
     int n = 0;
-    for (int k = 0; k < BvhNode::kWidth; ++k) {
-        if (!(mask & (1u << k))) continue;
+    for (uint32_t rest = mask; rest != 0; rest &= rest - 1) {
+        const int k = lowestBit(rest);
         int j = n++;
-        for (; j > 0 && tEntry[order[j - 1]] > tEntry[k]; --j) order[j] = order[j - 1];
+        if (!AnyHit)
+            for (; j > 0 && tEntry[order[j - 1]] > tEntry[k]; --j) order[j] = order[j - 1];
         order[j] = k;
     }
     for (int j = n - 1; j > 0; --j) push(order[j]);
     return order[0];
 }
 
+/// Whether child `k` follows child `after` in orderChildren's order (a strict total order).
+template <bool AnyHit>
+CA_BVH_INLINE bool followsInOrder(int k, int after, const Float* tEntry) {
+    if (AnyHit) return k > after;
+    return tEntry[k] > tEntry[after] || (tEntry[k] == tEntry[after] && k > after);
+}
+
+/// Tests precomputed primitive `p` (BvhPrimitive) against [0, hit.t), updating `hit` on a hit.
+CA_BVH_INLINE bool intersectPrecomputed(const BvhPrimitive& p, uint32_t numTriangles,
+                                        uint32_t firstCylinder, const Ray& ray, Hit& hit) {
+    const uint32_t id = p.primId;
+    Float t, b1 = 0, b2 = 0;
+    const bool h = id < numTriangles
+                       ? intersectTriangle(ray.o, ray.d, hit.t, p.p0, p.e1, p.e2, t, b1, b2)
+                   : id < firstCylinder
+                       ? intersectSphere(ray.o, ray.d, hit.t, p.p0, p.e1.x, t)
+                       : intersectCylinder(ray.o, ray.d, hit.t, p.p0, p.e1, p.e2.x, p.e2.y, t);
+    if (!h) return false;
+    hit.t = t;
+    hit.primId = id;
+    hit.b1 = b1;
+    hit.b2 = b2;
+    return true;
+}
+
+#if CA_BVH_SSE
+/// Host version of the precomputed leaf loop: four primitives at a time with intersectTriangle4
+/// (triangle4.h), which gives each lane the scalar test's exact result. Of the lanes hit, the
+/// smallest t wins, the earliest lane on a tie: the primitive the scalar loop would keep (it only
+/// accepts t below the current limit). A last group of fewer than four repeats the last primitive,
+/// which never beats its first copy; a group holding a sphere or cylinder is tested one by one.
+template <bool AnyHit>
+CA_BVH_INLINE bool intersectLeaf4(const BvhView& bvh, uint32_t numTriangles, uint32_t firstCylinder,
+                                  uint32_t begin, uint32_t end, const TraversalRay& r,
+                                  const Ray& ray, Hit& hit) {
+    const Vec3x4 o{r.o[0].v, r.o[1].v, r.o[2].v}, d{r.d[0].v, r.d[1].v, r.d[2].v};
+    bool found = false;
+    for (uint32_t i = begin; i < end; i += 4) {
+        uint32_t index[4];
+        for (uint32_t l = 0; l < 4; ++l) index[l] = min(i + l, end - 1);
+        const Triangle4 tri = Triangle4::load(bvh.prims.data(), index);
+        if (end - i < 3 || tri.triangleLanes(numTriangles) != 0xFu) {
+            for (uint32_t j = i; j < min(i + 4, end); ++j)
+                if (intersectPrecomputed(bvh.prims[j], numTriangles, firstCylinder, ray, hit)) {
+                    if (AnyHit) return true;
+                    found = true;
+                }
+            continue;
+        }
+        float t[4], b1[4], b2[4];
+        uint32_t mask = intersectTriangle4(o, d, hit.t, tri, t, b1, b2);
+        if (mask == 0) continue;
+        if (AnyHit) return true;
+        int best = lowestBit(mask);
+        for (mask &= mask - 1; mask != 0; mask &= mask - 1)
+            if (t[lowestBit(mask)] < t[best]) best = lowestBit(mask);
+        hit.t = t[best];
+        hit.primId = bvh.prims[index[best]].primId;
+        hit.b1 = b1[best];
+        hit.b2 = b2[best];
+        found = true;
+    }
+    return found;
+}
+#endif
+
 /// Tests primitives [begin, begin + count) of primIndices, updating `hit` (whose t is the current
 /// search limit).
 template <bool AnyHit>
-CA_HD_INLINE bool intersectLeaf(const BvhView& bvh, const SceneView& scene, uint32_t begin,
-                                uint32_t count, const Ray& ray, Hit& hit) {
+CA_BVH_INLINE bool intersectLeaf(const BvhView& bvh, const SceneView& scene, uint32_t begin,
+                                 uint32_t count, const TraversalRay& r, const Ray& ray, Hit& hit) {
     bool found = false;
     const uint32_t numTriangles = scene.numTriangles();
     const uint32_t firstCylinder = scene.firstCylinder();
@@ -105,26 +192,17 @@ CA_HD_INLINE bool intersectLeaf(const BvhView& bvh, const SceneView& scene, uint
         }
         return found;
     }
+#if CA_BVH_SSE
+    return intersectLeaf4<AnyHit>(bvh, numTriangles, firstCylinder, begin, end, r, ray, hit);
+#else
     for (uint32_t i = begin; i < end; ++i) {
-        const BvhPrimitive& p = bvh.prims[i];
-        const uint32_t id = p.primId;
-        Float t, b1 = 0, b2 = 0;
-        const bool h =
-            id < numTriangles
-                ? intersectTriangle(ray.o, ray.d, hit.t, p.p0, p.e1, p.e2, t, b1, b2)
-            : id < firstCylinder
-                ? intersectSphere(ray.o, ray.d, hit.t, p.p0, p.e1.x, t)
-                : intersectCylinder(ray.o, ray.d, hit.t, p.p0, p.e1, p.e2.x, p.e2.y, t);
-        if (h) {
+        if (intersectPrecomputed(bvh.prims[i], numTriangles, firstCylinder, ray, hit)) {
             if (AnyHit) return true;
-            hit.t = t;
-            hit.primId = id;
-            hit.b1 = b1;
-            hit.b2 = b2;
             found = true;
         }
     }
     return found;
+#endif
 }
 
 /// The step of every traversal at item (offset, count). A leaf (count > 0) has its primitives
@@ -132,11 +210,11 @@ CA_HD_INLINE bool intersectLeaf(const BvhView& bvh, const SceneView& scene, uint
 /// the mask of its children the ray enters before best.t, with their entry distances in tEntry.
 /// An any-hit traversal stops as soon as `found` is set.
 template <bool AnyHit>
-CA_HD_INLINE uint32_t visitItem(const BvhView& bvh, const SceneView& scene, const Ray& ray,
-                                const TraversalRay& r, uint32_t offset, uint32_t count, Hit& best,
-                                bool& found, Float tEntry[BvhNode::kWidth]) {
+CA_BVH_INLINE uint32_t visitItem(const BvhView& bvh, const SceneView& scene, const Ray& ray,
+                                 const TraversalRay& r, uint32_t offset, uint32_t count, Hit& best,
+                                 bool& found, Float tEntry[BvhNode::kWidth]) {
     if (count == 0) return intersectChildren(bvh.nodes[offset], r, best.t, tEntry);
-    if (intersectLeaf<AnyHit>(bvh, scene, offset, count, ray, best)) found = true;
+    if (intersectLeaf<AnyHit>(bvh, scene, offset, count, r, ray, best)) found = true;
     return 0;
 }
 
@@ -163,7 +241,7 @@ CA_HD bool traverse(const BvhView& bvh, const SceneView& scene, const Ray& ray, 
         if (mask != 0) {
             const BvhNode& node = bvh.nodes[offset];
             // Farther children wait on the stack, the nearest is visited now.
-            const int k = orderChildren(mask, tEntry, [&](int far) {
+            const int k = orderChildren<AnyHit>(mask, tEntry, [&](int far) {
                 stack[sp++] = Entry{node.offset[far], node.count[far], tEntry[far]};
             });
             offset = node.offset[k];
@@ -183,11 +261,11 @@ CA_HD bool traverse(const BvhView& bvh, const SceneView& scene, const Ray& ray, 
     }
 }
 
-/// (parent node << 2) | slot of node `index` (kBvhNoParent for the root): bvh.parents[index], or,
-/// for a view without parent links, found by descending from the root. That relies on the
-/// depth-first node order: every subtree occupies a contiguous index range starting at its root,
-/// so the subtree holding `index` is the inner child with the largest offset <= index. It costs
-/// one node fetch per level, and keeps the backtracking traversals free of any stack.
+/// (parent node << kBvhSlotBits) | slot of node `index` (kBvhNoParent for the root):
+/// bvh.parents[index], or, for a view without parent links, found by descending from the root. That
+/// relies on the depth-first node order: every subtree occupies a contiguous index range starting
+/// at its root, so the subtree holding `index` is the inner child with the largest offset <= index.
+/// It costs one node fetch per level, and keeps the backtracking traversals free of any stack.
 CA_HD_INLINE uint32_t parentLink(const BvhView& bvh, uint32_t index) {
     if (!bvh.parents.empty()) return bvh.parents[index];
     uint32_t node = 0;
@@ -202,7 +280,7 @@ CA_HD_INLINE uint32_t parentLink(const BvhView& bvh, uint32_t index) {
                 child = n.offset[k];
             }
         if (slot < 0) break;  // not a node of this tree
-        if (child == index) return (node << 2) | uint32_t(slot);
+        if (child == index) return (node << kBvhSlotBits) | uint32_t(slot);
         node = child;
     }
     return kBvhNoParent;
@@ -235,14 +313,14 @@ CA_HD bool traverseShortStack(const BvhView& bvh, const SceneView& scene, const 
     struct Entry {
         uint32_t offset, count;
         Float tNear;
-        uint32_t link;  // (parent node << 2) | slot of this child
+        uint32_t link;  // (parent node << kBvhSlotBits) | slot of this child
     };
     Entry stack[StackSize > 0 ? StackSize : 1];
     uint32_t top = 0;   // entries pushed minus popped; stack[(top - 1) % StackSize] is the top
     int held = 0;       // entries actually held (<= StackSize)
     bool lost = false;  // some entry was overwritten (or, stackless, never stored)
     uint32_t offset = 0, count = 0;  // the item being processed: start at the root node
-    uint32_t link = kBvhNoParent;    // (parent << 2) | slot of the item processed last
+    uint32_t link = kBvhNoParent;    // (parent << kBvhSlotBits) | slot of the item processed last
     int after = -1;                  // >= 0: node `offset` is re-entered after child slot `after`
     bool found = false;
     for (;;) {
@@ -251,17 +329,16 @@ CA_HD bool traverseShortStack(const BvhView& bvh, const SceneView& scene, const 
         if (AnyHit && found) return true;
         if (after >= 0) {  // only ever set for an inner node
             // Re-entered: keep only the children that come after slot `after`.
-            const Float t0 = tEntry[after];
             for (int k = 0; k < BvhNode::kWidth; ++k)
-                if (!(tEntry[k] > t0 || (tEntry[k] == t0 && k > after))) mask &= ~(1u << k);
+                if (!followsInOrder<AnyHit>(k, after, tEntry)) mask &= ~(1u << k);
             after = -1;
         }
         if (mask != 0) {
             const BvhNode& node = bvh.nodes[offset];
-            const int k = orderChildren(mask, tEntry, [&](int far) {
+            const int k = orderChildren<AnyHit>(mask, tEntry, [&](int far) {
                 if constexpr (StackSize > 0) {
                     stack[top++ % StackSize] = Entry{node.offset[far], node.count[far], tEntry[far],
-                                                     (offset << 2) | uint32_t(far)};
+                                                     (offset << kBvhSlotBits) | uint32_t(far)};
                     if (held < StackSize)
                         ++held;
                     else
@@ -270,7 +347,7 @@ CA_HD bool traverseShortStack(const BvhView& bvh, const SceneView& scene, const 
                     lost = true;
                 }
             });
-            link = (offset << 2) | uint32_t(k);
+            link = (offset << kBvhSlotBits) | uint32_t(k);
             count = node.count[k];
             offset = node.offset[k];
             continue;
@@ -293,8 +370,8 @@ CA_HD bool traverseShortStack(const BvhView& bvh, const SceneView& scene, const 
         if (popped) continue;
         if (!lost || link == kBvhNoParent) return found;
         // Backtrack: continue in the parent of the last item, after that item's slot.
-        offset = link >> 2;
-        after = int(link & 3u);
+        offset = link >> kBvhSlotBits;
+        after = int(link & ((1u << kBvhSlotBits) - 1));
         count = 0;
         link = parentLink(bvh, offset);
     }

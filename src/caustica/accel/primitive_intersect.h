@@ -9,6 +9,7 @@
 
 #include <cstdint>
 
+#include "caustica/accel/simd4.h"  // CA_BVH_INLINE
 #include "caustica/scene/ray.h"
 #include "caustica/scene/scene.h"
 #include "caustica/util/math.h"
@@ -23,8 +24,8 @@ namespace caustica {
 /// Divisions happen only for accepted hits. A zero-area triangle whose cross product is exactly
 /// zero (repeated vertices) has den = 0 and is never hit. `p0` is vertex 0, `e1 = p1 - p0`,
 /// `e2 = p2 - p0`; b1, b2 are the barycentrics of vertices 1 and 2.
-CA_HD_INLINE bool intersectTriangle(Vec3f o, Vec3f d, Float tMax, Vec3f p0, Vec3f e1, Vec3f e2,
-                                    Float& tOut, Float& b1Out, Float& b2Out) {
+CA_BVH_INLINE bool intersectTriangle(Vec3f o, Vec3f d, Float tMax, Vec3f p0, Vec3f e1, Vec3f e2,
+                                     Float& tOut, Float& b1Out, Float& b2Out) {
     const Vec3f n = cross(e1, e2);
     const Float den = dot(d, n);
     const Vec3f c = p0 - o;

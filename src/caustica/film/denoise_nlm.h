@@ -36,11 +36,11 @@
 
 namespace caustica {
 
-/// Parameters of the NL-means filter (RMZ13's values as defaults).
+/// Parameters of the NL-means filter (RMZ13's values as defaults, except k_c: docs/DENOISING.md).
 struct NlmParams {
     int radius = 8;          ///< r: the search window is (2r+1)^2 pixels
     int patchRadius = 1;     ///< f: patches of (2f+1)^2 pixels
-    float kColor = 0.45f;    ///< k_c: colour sensitivity (smaller: sharper)
+    float kColor = 0.8f;     ///< k_c: colour sensitivity (smaller: sharper); RMZ13 0.45
     float kFeature = 0.6f;   ///< k_f: feature sensitivity
     float alpha = 1.0f;      ///< variance cancellation strength
     float tau = 1e-3f;       ///< floor of the feature gradient term
@@ -111,6 +111,28 @@ CA_HD_INLINE void nlmEstimateVariance(const NlmView& v, float* variance, size_t 
             ++count;
         }
     for (int ch = 0; ch < 3; ++ch) variance[3 * i + ch] = count > 0 ? sum[ch] / float(count) * (9.0f / 8.0f) : 0.0f;
+}
+
+/// A given variance smoothed over the 5x5 neighbourhood (valid pixels): a variance from a few
+/// batches is itself noisy (3 degrees of freedom from 4 batches), and a pixel whose batches
+/// happen to agree would otherwise claim a variance of 0 and refuse every neighbour.
+CA_HD_INLINE void nlmSmoothVariance(const NlmView& v, const float* given, float* variance, size_t i) {
+    const int px = int(i % size_t(v.width)), py = int(i / size_t(v.width));
+    float sum[3] = {0, 0, 0};
+    int count = 0;
+    for (int dy = -2; dy <= 2; ++dy)
+        for (int dx = -2; dx <= 2; ++dx) {
+            const int x = px + dx, y = py + dy;
+            if (x < 0 || y < 0 || x >= v.width || y >= v.height) continue;
+            const size_t c = size_t(y) * size_t(v.width) + size_t(x);
+            if (!v.valid[c]) continue;
+            for (int ch = 0; ch < 3; ++ch) {
+                const float g = given[3 * c + ch];
+                sum[ch] += nlmFinite(g) && g > 0.0f ? g : 0.0f;
+            }
+            ++count;
+        }
+    for (int ch = 0; ch < 3; ++ch) variance[3 * i + ch] = count > 0 ? sum[ch] / float(count) : 0.0f;
 }
 
 /// Squared gradient magnitude of feature `f` at (x, y), central differences (one-sided at the

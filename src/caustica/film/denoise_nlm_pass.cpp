@@ -54,6 +54,12 @@ void launchVarianceEstimate(Exec exec, size_t n, NlmView view, float* variance) 
 }
 
 template <class Exec>
+void launchVarianceSmooth(Exec exec, size_t n, NlmView view, const float* given, float* variance) {
+    launch(exec, "denoise_nlm_variance_smooth", n,
+           [=] CA_HD(size_t i) { nlmSmoothVariance(view, given, variance, i); });
+}
+
+template <class Exec>
 void launchFilter(Exec exec, size_t n, NlmView view, float* out) {
     launch(exec, "denoise_nlm_filter", n, [=] CA_HD(size_t i) { nlmFilterPixel(view, out, i); }, 16);
 }
@@ -99,13 +105,12 @@ Image denoiseNlm<DriverExec>(DriverExec exec, const Image& color, const DenoiseF
         view.features[view.featureCount++] = NlmFeature{guides.back().data(), channels};
     }
 
-    Buffer<float> variance;
+    // Kept alive until the filter has run (GPU launches are asynchronous).
+    Buffer<float> variance(device, 3 * n), given;
     if (features.variance) {
-        std::vector<float> v(features.variance->rgb);
-        for (float& x : v) x = std::isfinite(x) && x > 0.0f ? x : 0.0f;
-        variance = Buffer<float>(device, v);
+        given = Buffer<float>(device, features.variance->rgb);
+        launchVarianceSmooth(exec, n, view, given.data(), variance.data());
     } else {
-        variance = Buffer<float>(device, 3 * n);
         launchVarianceEstimate(exec, n, view, variance.data());
     }
     view.variance = variance.data();

@@ -8,7 +8,8 @@ its per-pixel variance of the mean. Then:
   nlm       caustica denoise --method nlm with albedo, normal, depth and the batch variance
   nlm-novar the same without --variance (the filter estimates the variance)
   oidn      caustica denoise --method oidn with albedo and normal (when OIDN is found)
-relMSE comes from `caustica compare --json`. The guides (albedo, sh_normal, depth) are rendered
+relMSE comes from `caustica compare --json`; `seconds` is the batch renders' wall time for the
+noisy row ('' when --reuse found them) and the `caustica denoise` process's for the others. The guides (albedo, sh_normal, depth) are rendered
 by Mitsuba 3's `aov` integrator (scalar_rgb, same scene file, resolution and camera, 64 spp)
 until caustica's renderer writes its own AOVs.
 
@@ -98,14 +99,16 @@ def main():
             batch_spp = max(1, spp // args.batches)
             t0 = time.time()
             batches = []
+            rendered = False
             for b in range(args.batches):
                 path = os.path.join(work, f'batch-{spp}-{b}.exr')
                 if not (args.reuse and os.path.exists(path)):
+                    rendered = True
                     run([args.caustica, 'render', os.path.join(ROOT, 'scenes', scene, 'scene.xml'), '-o', path,
                          '--spp', str(batch_spp), '--seed', str(b + 1), '--res', f'{res}x{res}',
                          '--threads', str(args.threads), '-q'])
                 batches.append(read_exr(mi, path))
-            render_s = time.time() - t0
+            render_s = round(time.time() - t0, 2) if rendered else ''  # '' when reused
             stack = np.stack(batches)
             noisy = os.path.join(work, f'noisy-{spp}.exr')
             var = os.path.join(work, f'var-{spp}.exr')
@@ -127,10 +130,10 @@ def main():
                 if r.returncode != 0:
                     print(f'{scene} {spp} spp {method}: skipped: {(r.stdout + r.stderr).strip()}')
                     continue
-                rows.append(dict(base, method=method, relmse=relmse(args.caustica, out, ref), seconds=seconds))
+                rows.append(dict(base, method=method, relmse=relmse(args.caustica, out, ref), seconds=round(seconds, 2)))
             for row in rows[first:]:
                 print(f"{row['scene']:14s} {row['spp']:4d} spp {row['method']:10s} relMSE {row['relmse']:.5f}"
-                      f"  {row['seconds']:.2f} s")
+                      f"  {row['seconds']} s")
     write_csv(args.csv, rows)
 
 

@@ -80,37 +80,44 @@ CA_HD_INLINE void nlmPrepareColor(const float* input, float* color, uint8_t* val
 
 CA_HD_INLINE int nlmClamp(int v, int lo, int hi) { return v < lo ? lo : (v > hi ? hi : v); }
 
+/// Mean of term(c, t) (t: 3 floats the term fills) over the valid pixels c within `radius` of
+/// (px, py) (outside the image: left out), written to mean[0..2]; 0 when there are none.
+template <class Term>
+CA_HD_INLINE void nlmValidMean(const NlmView& v, int px, int py, int radius, const Term& term, float mean[3]) {
+    float sum[3] = {0, 0, 0};
+    int count = 0;
+    for (int y = py - radius; y <= py + radius; ++y)
+        for (int x = px - radius; x <= px + radius; ++x) {
+            if (x < 0 || y < 0 || x >= v.width || y >= v.height) continue;
+            const size_t c = size_t(y) * size_t(v.width) + size_t(x);
+            if (!v.valid[c]) continue;
+            float t[3];
+            term(c, t);
+            for (int ch = 0; ch < 3; ++ch) sum[ch] += t[ch];
+            ++count;
+        }
+    for (int ch = 0; ch < 3; ++ch) mean[ch] = count > 0 ? sum[ch] / float(count) : 0.0f;
+}
+
 /// Per-pixel variance of the mean when none is given: 9/8 times the mean squared residual of the
 /// colour against its 3x3 box mean, averaged over the 5x5 neighbourhood (for white noise of
 /// variance s^2 the residual has variance 8/9 s^2). Overestimates at edges, where the feature
 /// weight takes over.
 CA_HD_INLINE void nlmEstimateVariance(const NlmView& v, float* variance, size_t i) {
     const int px = int(i % size_t(v.width)), py = int(i / size_t(v.width));
-    float sum[3] = {0, 0, 0};
-    int count = 0;
-    for (int dy = -2; dy <= 2; ++dy)
-        for (int dx = -2; dx <= 2; ++dx) {
-            const int x = px + dx, y = py + dy;
-            if (x < 0 || y < 0 || x >= v.width || y >= v.height) continue;
-            const size_t c = size_t(y) * size_t(v.width) + size_t(x);
-            if (!v.valid[c]) continue;
-            float mean[3] = {0, 0, 0};
-            int n = 0;
-            for (int ey = -1; ey <= 1; ++ey)
-                for (int ex = -1; ex <= 1; ++ex) {
-                    const int xx = nlmClamp(x + ex, 0, v.width - 1), yy = nlmClamp(y + ey, 0, v.height - 1);
-                    const size_t k = size_t(yy) * size_t(v.width) + size_t(xx);
-                    if (!v.valid[k]) continue;
-                    for (int ch = 0; ch < 3; ++ch) mean[ch] += v.color[3 * k + ch];
-                    ++n;
-                }
-            for (int ch = 0; ch < 3; ++ch) {
-                const float r = v.color[3 * c + ch] - mean[ch] / float(n);
-                sum[ch] += r * r;
-            }
-            ++count;
+    const float* color = v.color;
+    auto squaredResidual = [&v, color](size_t c, float t[3]) {
+        const int x = int(c % size_t(v.width)), y = int(c / size_t(v.width));
+        float box[3];
+        nlmValidMean(v, x, y, 1, [color](size_t k, float u[3]) {
+            for (int ch = 0; ch < 3; ++ch) u[ch] = color[3 * k + ch];
+        }, box);
+        for (int ch = 0; ch < 3; ++ch) {
+            const float r = color[3 * c + ch] - box[ch];
+            t[ch] = r * r * (9.0f / 8.0f);
         }
-    for (int ch = 0; ch < 3; ++ch) variance[3 * i + ch] = count > 0 ? sum[ch] / float(count) * (9.0f / 8.0f) : 0.0f;
+    };
+    nlmValidMean(v, px, py, 2, squaredResidual, variance + 3 * i);
 }
 
 /// A given variance smoothed over the 5x5 neighbourhood (valid pixels): a variance from a few
@@ -118,21 +125,12 @@ CA_HD_INLINE void nlmEstimateVariance(const NlmView& v, float* variance, size_t 
 /// happen to agree would otherwise claim a variance of 0 and refuse every neighbour.
 CA_HD_INLINE void nlmSmoothVariance(const NlmView& v, const float* given, float* variance, size_t i) {
     const int px = int(i % size_t(v.width)), py = int(i / size_t(v.width));
-    float sum[3] = {0, 0, 0};
-    int count = 0;
-    for (int dy = -2; dy <= 2; ++dy)
-        for (int dx = -2; dx <= 2; ++dx) {
-            const int x = px + dx, y = py + dy;
-            if (x < 0 || y < 0 || x >= v.width || y >= v.height) continue;
-            const size_t c = size_t(y) * size_t(v.width) + size_t(x);
-            if (!v.valid[c]) continue;
-            for (int ch = 0; ch < 3; ++ch) {
-                const float g = given[3 * c + ch];
-                sum[ch] += nlmFinite(g) && g > 0.0f ? g : 0.0f;
-            }
-            ++count;
+    nlmValidMean(v, px, py, 2, [given](size_t c, float t[3]) {
+        for (int ch = 0; ch < 3; ++ch) {
+            const float g = given[3 * c + ch];
+            t[ch] = nlmFinite(g) && g > 0.0f ? g : 0.0f;
         }
-    for (int ch = 0; ch < 3; ++ch) variance[3 * i + ch] = count > 0 ? sum[ch] / float(count) : 0.0f;
+    }, variance + 3 * i);
 }
 
 /// Squared gradient magnitude of feature `f` at (x, y), central differences (one-sided at the

@@ -7,6 +7,7 @@
 
 #include "cli_helpers.h"
 #include "caustica/io/image_io.h"
+#include "common/layered_exr.h"
 
 namespace caustica::test {
 namespace {
@@ -39,6 +40,24 @@ TEST_F(DenoiseCli, WritesANewFileAndKeepsTheInput) {
     EXPECT_TRUE(out.sameSize(in) && out.allFinite());
     EXPECT_NE(out.rgb, in.rgb);
     EXPECT_EQ(readImageMetadata(path("out.exr")).entries.at("caustica.denoiser"), "nlm");
+}
+
+TEST_F(DenoiseCli, UsesTheInputsAovLayers) {
+    // Colour: a step at x = 8 plus a fixed pattern; albedo layer with the same step.
+    auto value = [](int channel, int x, int y) {
+        const float step = x >= 8 ? 1.0f : 0.1f;
+        if (channel < 3) return step + float((x * 7 + y * 13) % 5) * 0.02f;
+        return channel < 6 ? step * 0.5f : 0.0f;  // alb.R/G/B; the other layer's channels 0
+    };
+    writeLayeredExr(path("layered.exr"), 16, 12, {"alb.R", "alb.G", "alb.B", "nn.X", "nn.Y", "nn.Z"},
+                    "alb:albedo,nn:sh_normal", value);
+    CliResult r = runCli("denoise " + path("layered.exr") + " -o " + path("out.exr"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("guides: albedo normal)"), std::string::npos) << r.output;
+    EXPECT_EQ(readImageMetadata(path("out.exr")).entries.count("caustica.aovs"), 0u);
+    r = runCli("denoise " + path("layered.exr") + " -o " + path("out2.exr") + " --ignore-layers");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("guides: none)"), std::string::npos) << r.output;
 }
 
 TEST_F(DenoiseCli, RefusesToOverwriteTheInput) {

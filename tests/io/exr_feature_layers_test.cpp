@@ -1,19 +1,14 @@
 // exr_feature_layers_test.cpp — denoiser guides read by type from an EXR's AOV layers.
 #include <gtest/gtest.h>
 
-#include <OpenEXR/ImfChannelList.h>
-#include <OpenEXR/ImfFrameBuffer.h>
-#include <OpenEXR/ImfHeader.h>
-#include <OpenEXR/ImfOutputFile.h>
-#include <OpenEXR/ImfStringAttribute.h>
 
 #include <algorithm>
 #include <filesystem>
-#include <map>
 #include <string>
 #include <vector>
 
 #include "caustica/io/exr_feature_layers.h"
+#include "common/layered_exr.h"
 #include "caustica/io/image_io.h"
 #include "caustica/util/error.h"
 
@@ -22,30 +17,13 @@ namespace {
 
 constexpr int kW = 5, kH = 3;
 
-/// Value of channel `name` at pixel (x, y) in the test file: distinct per channel and pixel.
+/// Value of channel number `channelIndex` at pixel (x, y) in the test file: distinct per channel and pixel.
 float valueOf(int channelIndex, int x, int y) { return float(channelIndex) * 100.0f + float(y * kW + x); }
 
-/// Writes an EXR with R, G, B and the given extra channels (values from valueOf, in the order
-/// given) and, unless empty, the caustica.aovs attribute.
 std::string writeLayeredExr(const std::string& name, const std::vector<std::string>& channels,
                             const std::string& aovs) {
     const std::string path = (std::filesystem::temp_directory_path() / name).string();
-    Imf::Header header(kW, kH);
-    std::vector<std::string> all = {"R", "G", "B"};
-    all.insert(all.end(), channels.begin(), channels.end());
-    for (const std::string& c : all) header.channels().insert(c, Imf::Channel(Imf::FLOAT));
-    if (!aovs.empty()) header.insert(kAovsAttribute, Imf::StringAttribute(aovs));
-    std::vector<std::vector<float>> data(all.size(), std::vector<float>(kW * kH));
-    Imf::FrameBuffer fb;
-    for (size_t k = 0; k < all.size(); ++k) {
-        for (int y = 0; y < kH; ++y)
-            for (int x = 0; x < kW; ++x) data[k][size_t(y * kW + x)] = valueOf(int(k), x, y);
-        fb.insert(all[k], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(data[k].data()), sizeof(float),
-                                     sizeof(float) * kW));
-    }
-    Imf::OutputFile file(path.c_str(), header);
-    file.setFrameBuffer(fb);
-    file.writePixels(kH);
+    test::writeLayeredExr(path, kW, kH, channels, aovs, valueOf);
     return path;
 }
 

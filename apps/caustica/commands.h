@@ -9,6 +9,7 @@ namespace caustica::cli {
 std::function<int()> addRenderCommand(CLI::App& app);
 std::function<int()> addCompareCommand(CLI::App& app);
 std::function<int()> addInfoCommand(CLI::App& app);
+std::function<int()> addDenoiseCommand(CLI::App& app);
 
 /// Parses "-D name=value" strings into a map; throws caustica::Error on a malformed entry.
 std::map<std::string, std::string> parseDefines(const std::vector<std::string>& defines);

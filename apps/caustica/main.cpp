@@ -1,4 +1,4 @@
-// caustica — command line entry point: render, compare, info.
+// caustica — command line entry point: render, compare, info, denoise.
 #include <cstdio>
 #include <exception>
 
@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
     auto render = caustica::cli::addRenderCommand(app);
     auto compare = caustica::cli::addCompareCommand(app);
     auto info = caustica::cli::addInfoCommand(app);
+    auto denoise = caustica::cli::addDenoiseCommand(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -28,6 +29,7 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("render")) return render();
         if (app.got_subcommand("compare")) return compare();
         if (app.got_subcommand("info")) return info();
+        if (app.got_subcommand("denoise")) return denoise();
     } catch (const std::exception& e) {
         std::fprintf(stderr, "caustica: error: %s\n", e.what());
         return 1;

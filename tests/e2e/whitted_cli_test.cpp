@@ -6,8 +6,8 @@
 #include <memory>
 #include <sstream>
 
-#include "e2e/cli_helpers.h"
 #include "caustica/util/error.h"
+#include "e2e/cli_helpers.h"
 #include "e2e/render_helpers.h"
 
 namespace caustica::test {
@@ -24,9 +24,10 @@ std::string readText(const std::string& file) {
 
 TEST_F(WhittedCli, IntegratorOptionSelectsWhitted) {
     const std::string scene = sourcePath("scenes/cornell-water/scene.xml");
-    const CliResult r = runCli("render " + scene + " --integrator whitted --whitted-max-depth 6 --spp 2 --res 24x24 "
-                               "-q --device cpu --checkpoint-every 0 -o " + path("w.exr") + " --stats-json " +
-                               path("stats.json"));
+    const CliResult r = runCli("render " + scene +
+                               " --integrator whitted --whitted-max-depth 6 --spp 2 --res 24x24 "
+                               "-q --device cpu --checkpoint-every 0 -o " +
+                               path("w.exr") + " --stats-json " + path("stats.json"));
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_TRUE(std::filesystem::exists(path("w.exr")));
     const std::string json = readText(path("stats.json"));
@@ -39,9 +40,10 @@ TEST_F(WhittedCli, SceneIntegratorTypeWhittedIsNative) {
     ASSERT_NE(xml.find(pathTag), std::string::npos);
     xml.replace(xml.find(pathTag), pathTag.size(), "<integrator type=\"whitted\">");
     std::ofstream(path("box.xml")) << xml;
-    const CliResult r = runCli("render " + path("box.xml") + " --spp 1 --res 16x16 -q --device cpu "
-                               "--checkpoint-every 0 -o " + path("b.exr") + " --stats-json " +
-                               path("stats.json"));
+    const CliResult r = runCli("render " + path("box.xml") +
+                               " --spp 1 --res 16x16 -q --device cpu "
+                               "--checkpoint-every 0 -o " +
+                               path("b.exr") + " --stats-json " + path("stats.json"));
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_EQ(r.output.find("not supported"), std::string::npos) << r.output;
     EXPECT_NE(readText(path("stats.json")).find("\"integrator\": \"whitted\""), std::string::npos);
@@ -49,8 +51,10 @@ TEST_F(WhittedCli, SceneIntegratorTypeWhittedIsNative) {
 
 TEST_F(WhittedCli, BadDepthIsRefusedNamingTheOption) {
     const std::string scene = sourcePath("scenes/cornell-box/scene.xml");
-    const CliResult r = runCli("render " + scene + " --integrator whitted --whitted-max-depth -5 --spp 1 --res 8x8 "
-                               "-q --device cpu -o " + path("x.exr"));
+    const CliResult r = runCli("render " + scene +
+                               " --integrator whitted --whitted-max-depth -5 --spp 1 --res 8x8 "
+                               "-q --device cpu -o " +
+                               path("x.exr"));
     EXPECT_NE(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("--whitted-max-depth"), std::string::npos) << r.output;
     EXPECT_FALSE(std::filesystem::exists(path("x.exr")));
@@ -65,7 +69,8 @@ TEST_F(WhittedCli, ResumedRenderEndsWithTheUninterruptedImage) {
     request.seed = 7;
     request.resolution = std::make_pair(24, 24);
     auto renderer = [&] {
-        return std::make_unique<Renderer>(loadScene(sourcePath("scenes/cornell-water/scene.xml")), request);
+        return std::make_unique<Renderer>(loadScene(sourcePath("scenes/cornell-water/scene.xml")),
+                                          request);
     };
     auto whole = renderer();
     while (!whole->finished()) whole->step();
@@ -79,7 +84,8 @@ TEST_F(WhittedCli, ResumedRenderEndsWithTheUninterruptedImage) {
     EXPECT_EQ(resumed->progress().samplesPerPixel, 6);
     EXPECT_TRUE(resumed->develop().rgb == whole->develop().rgb) << "the images differ";
     // A checkpoint of another max_depth is another render.
-    request.integratorParams = {{"max_depth", IntegratorParam::Kind::Text, "3", "--whitted-max-depth"}};
+    request.integratorParams = {
+        {"max_depth", IntegratorParam::Kind::Text, "3", "--whitted-max-depth"}};
     EXPECT_THROW(renderer()->load(path("w.ckpt")), Error);
 }
 

@@ -49,7 +49,8 @@ WhittedSettings whitted(int maxDepth, bool hide = false, int rrDepth = 5) {
     return s;
 }
 
-SamplePass renderWhitted(const Scene& scene, const Accel& accel, const WhittedSettings& s, int spp, uint64_t seed) {
+SamplePass renderWhitted(const Scene& scene, const Accel& accel, const WhittedSettings& s, int spp,
+                         uint64_t seed) {
     SamplePass pass(scene.film.width, scene.film.height, spp);
     makeWhittedPass<CpuExec>(scene, accel, s)->render(seed, 0, pass);
     return pass;
@@ -78,8 +79,9 @@ Scene mirrorScene(const Bsdf& mirror, Spectrum intensity) {
     Bsdf plane;
     plane.reflectance = Spectrum(0.5f);
     scene.bsdfs = {plane, mirror};
-    addRect(scene, {-1, -1, 4}, {0, 2, 2}, {2, 0, 0}, 1);  // normal (0, 1, -1)/√2, towards the camera
-    addRect(scene, {-1, 2, 4}, {2, 0, 0}, {0, 0, 2}, 0);   // normal -y
+    addRect(scene, {-1, -1, 4}, {0, 2, 2}, {2, 0, 0},
+            1);  // normal (0, 1, -1)/√2, towards the camera
+    addRect(scene, {-1, 2, 4}, {2, 0, 0}, {0, 0, 2}, 0);  // normal -y
     addPointLight(scene, {0, 1, 5}, intensity);
     finalizeLights(scene);
     orthographicCamera(scene, 4, 0.005f);
@@ -100,12 +102,13 @@ TEST(Whitted, MirrorShowsTheLitPlaneTimesTheConductorsReflectance) {
     gold.reflectance = Spectrum(1);
     const Float cos45 = std::sqrt(0.5f);
     for (const auto& [mirror, reflectance] :
-         {std::pair{perfect, perfect.reflectance}, std::pair{gold, fresnelConductor(cos45, gold.eta, gold.k)}}) {
+         {std::pair{perfect, perfect.reflectance},
+          std::pair{gold, fresnelConductor(cos45, gold.eta, gold.k)}}) {
         const Scene scene = mirrorScene(mirror, intensity);
         for (AccelKind kind : {AccelKind::Embree, AccelKind::Bvh}) {
             const Accel accel(scene, kind);
-            expectNear(passMean(renderWhitted(scene, accel, whitted(-1), 4, 1)), planeRadiance * reflectance, 1e-3,
-                       accelKindName(kind));
+            expectNear(passMean(renderWhitted(scene, accel, whitted(-1), 4, 1)),
+                       planeRadiance * reflectance, 1e-3, accelKindName(kind));
             // Three segments are needed: camera-mirror, mirror-plane, plane-light.
             EXPECT_TRUE(passMean(renderWhitted(scene, accel, whitted(2), 4, 1)).isBlack());
         }
@@ -122,7 +125,7 @@ Scene slabScene(Float eta, Spectrum le) {
     glass.reflectance = Spectrum(1);  // specular_reflectance
     glass.etaRatio = eta;
     scene.bsdfs = {white, glass};
-    addRect(scene, {-5, -5, 2}, {0, 10, 0}, {10, 0, 0}, 1);    // normal -z
+    addRect(scene, {-5, -5, 2}, {0, 10, 0}, {10, 0, 0}, 1);     // normal -z
     addRect(scene, {-5, -5, 2.5f}, {10, 0, 0}, {0, 10, 0}, 1);  // normal +z
     addAreaLight(scene, addRect(scene, {-5, -5, 4}, {0, 10, 0}, {10, 0, 0}, 0), le);
     finalizeLights(scene);
@@ -145,8 +148,8 @@ TEST(Whitted, EmitterThroughAGlassSlabIsAttenuatedByFresnel) {
     for (bool hide : {false, true}) {  // the emitter is not seen directly: hide_emitters keeps it
         for (int depth : {3, 4, 5, 7}) {
             const double t = slabTransmittance(f, (depth - 3) / 2);
-            expectNear(passMean(renderWhitted(scene, accel, whitted(depth, hide, 1000), 2, 1)), le * Float(t), 2e-6,
-                       "max_depth");
+            expectNear(passMean(renderWhitted(scene, accel, whitted(depth, hide, 1000), 2, 1)),
+                       le * Float(t), 2e-6, "max_depth");
         }
         // Unbounded and without roulette: the whole geometric series, (1 - F) / (1 + F).
         expectNear(passMean(renderWhitted(scene, accel, whitted(-1, hide, 1000), 2, 1)),
@@ -167,7 +170,8 @@ TEST(Whitted, StackOverflowChoosesOneLobeAndKeepsTheExpectation) {
     const PixelStats stats = statsOf(pass);
     const double want = slabTransmittance(f, 29);
     const double z = (stats.imageMean - want) / std::sqrt(stats.imageVarOfMean);
-    std::printf("slab of index 20: whitted %.5f, analytic %.5f, z %.2f\n", stats.imageMean, want, z);
+    std::printf("slab of index 20: whitted %.5f, analytic %.5f, z %.2f\n", stats.imageMean, want,
+                z);
     EXPECT_GT(stats.imageVarOfMean, 0) << "the stack must have overflowed (random lobe choices)";
     EXPECT_LT(std::abs(z), 4);
 }
@@ -189,7 +193,8 @@ Scene specularDirectScene(int size) {
     addRect(scene, {-10, -10, 1}, {0, 20, 0}, {20, 0, 0}, 1);     // normal -z
     addRect(scene, {-10, -10, 1.3f}, {20, 0, 0}, {0, 20, 0}, 1);  // normal +z
     addRect(scene, {-3, -3, 4}, {0, 6, 0}, {6, 0, 0}, 0);         // normal -z
-    addAreaLight(scene, addRect(scene, {0.5f, 0.5f, 3}, {0.6f, 0, 0}, {0, 0.6f, 0}, 2), Spectrum(8, 7, 6));
+    addAreaLight(scene, addRect(scene, {0.5f, 0.5f, 3}, {0.6f, 0, 0}, {0, 0.6f, 0}, 2),
+                 Spectrum(8, 7, 6));
     addPointLight(scene, {-0.8f, -0.5f, 3.5f}, Spectrum(0.5f));
     finalizeLights(scene);
     scene.camera.width = scene.film.width = size;
@@ -207,13 +212,15 @@ TEST(Whitted, EqualsThePathTracerOnSpecularChainsEndingInDirectLight) {
     SamplePass reference(scene.film.width, scene.film.height, kSpp);
     makePathPass<CpuExec>(scene, accel, path, PathMode::Megakernel)->render(1, 0, reference);
     const PixelStats pathStats = statsOf(reference);
-    const Agreement same = compare(statsOf(renderWhitted(scene, accel, whitted(5), kSpp, 2)), pathStats);
-    std::printf("whitted(5) vs path(5): image z %.2f, |z| > 4 in %.3f%% of pixel channels\n", same.imageZ,
-                100 * same.fractionAbove4);
+    const Agreement same =
+        compare(statsOf(renderWhitted(scene, accel, whitted(5), kSpp, 2)), pathStats);
+    std::printf("whitted(5) vs path(5): image z %.2f, |z| > 4 in %.3f%% of pixel channels\n",
+                same.imageZ, 100 * same.fractionAbove4);
     EXPECT_LT(std::abs(same.imageZ), kMaxImageZ);
     EXPECT_LE(same.fractionAbove4, kMaxFractionAbove4);
     // Without the segment to the light the wall is dark: the same statistics reject it.
-    const Agreement wrong = compare(statsOf(renderWhitted(scene, accel, whitted(3), kSpp, 2)), pathStats);
+    const Agreement wrong =
+        compare(statsOf(renderWhitted(scene, accel, whitted(3), kSpp, 2)), pathStats);
     EXPECT_GT(std::abs(wrong.imageZ), kMaxImageZ);
     EXPECT_GT(wrong.fractionAbove4, kMaxFractionAbove4);
 }

@@ -57,18 +57,21 @@ struct WhittedBranch {
 
 /// Direct light at a smooth surface: one sample of every emitter, each with a shadow ray.
 template <class Intersector, class Sampler>
-CA_HD Spectrum whittedDirectLight(const SceneView& scene, const Intersector& accel, Sampler& sampler,
-                                  const SurfaceInteraction& si, Vec3f wo, uint32_t bsdf, uint32_t& rayCount) {
+CA_HD Spectrum whittedDirectLight(const SceneView& scene, const Intersector& accel,
+                                  Sampler& sampler, const SurfaceInteraction& si, Vec3f wo,
+                                  uint32_t bsdf, uint32_t& rayCount) {
     Spectrum sum(0);
     const uint32_t lights = uint32_t(scene.lights.size());
     for (uint32_t i = 0; i < lights; ++i) {
         const Vec2f u = sampler.get2D();
         LightSample ls;
         // Selection probability 1: every light is sampled.
-        if (!sampleLightIndex(scene, i, 1, si.p, u, ls) || !(ls.pdf > 0) || ls.Le.isBlack()) continue;
+        if (!sampleLightIndex(scene, i, 1, si.p, u, ls) || !(ls.pdf > 0) || ls.Le.isBlack())
+            continue;
         const Spectrum f = evalBsdf(scene.bsdfs, bsdf, si, wo, ls.wi);
         if (f.isBlack()) continue;
-        const Ray shadow = ls.dist < kInfinity ? spawnRayTo(si.p, si.ng, ls.p, ls.n) : spawnRay(si.p, si.ng, ls.wi);
+        const Ray shadow = ls.dist < kInfinity ? spawnRayTo(si.p, si.ng, ls.p, ls.n)
+                                               : spawnRay(si.p, si.ng, ls.wi);
         ++rayCount;
         if (!accel.occluded(shadow)) sum += f * ls.Le * (1 / ls.pdf);
     }
@@ -77,14 +80,36 @@ CA_HD Spectrum whittedDirectLight(const SceneView& scene, const Intersector& acc
 
 /// How likely a full stack continues along `lobe`: its mean weight without the radiance
 /// scaling η'² of a refraction, so a dielectric's lobes are chosen by Fresnel (as sampleBsdf).
-CA_HD_INLINE Float lobeImportance(const DeltaLobe& lobe) { return lobe.weight.average() * sqr(lobe.eta); }
+CA_HD_INLINE Float lobeImportance(const DeltaLobe& lobe) {
+    return lobe.weight.average() * sqr(lobe.eta);
+}
+
+/// The lobe a full stack continues along: index into lobes[0, k) chosen with `u` in [0, 1) in
+/// proportion to lobeImportance, and its probability; -1 when no lobe carries weight.
+CA_HD_INLINE int chooseWhittedLobe(const DeltaLobe* lobes, int k, Float u, Float& probability) {
+    Float total = 0;
+    for (int i = 0; i < k; ++i) total += lobeImportance(lobes[i]);
+    if (!(total > 0)) return -1;
+    u *= total;
+    int chosen = k - 1;  // where rounding leaves u >= 0 after the last subtraction
+    for (int i = 0; i < k - 1; ++i) {
+        u -= lobeImportance(lobes[i]);
+        if (u < 0) {
+            chosen = i;
+            break;
+        }
+    }
+    probability = lobeImportance(lobes[chosen]) / total;
+    return chosen;
+}
 
 /// Pushes the branch of `lobe` leaving `si` after Russian roulette (from rr_depth). Returns
 /// whether it was pushed.
 template <class Sampler>
 CA_HD_INLINE bool pushWhittedBranch(WhittedBranch* stack, int& n, const WhittedBranch& parent,
-                                    const SurfaceInteraction& si, const DeltaLobe& lobe, Float scale,
-                                    Sampler& sampler, const WhittedSettings& settings) {
+                                    const SurfaceInteraction& si, const DeltaLobe& lobe,
+                                    Float scale, Sampler& sampler,
+                                    const WhittedSettings& settings) {
     WhittedBranch child;
     child.throughput = parent.throughput * lobe.weight * scale;
     child.etaScale = parent.etaScale * lobe.eta;
@@ -101,61 +126,59 @@ CA_HD_INLINE bool pushWhittedBranch(WhittedBranch* stack, int& n, const WhittedB
     return true;
 }
 
-/// Radiance arriving along the camera ray `ray`. `rayCount` is incremented by the rays traced
-/// (closest hit and shadow).
-template <class Intersector, class Sampler>
-CA_HD Spectrum whittedRadiance(const SceneView& scene, const Intersector& accel, Sampler& sampler,
-                               const Ray& ray, const WhittedSettings& settings, uint32_t& rayCount) {
-    Spectrum result(0);
-    const uint32_t maxDepth = maxDepthOf(settings);
-    if (maxDepth == 0) return result;
-    WhittedBranch stack[kWhittedStackSize];
-    int n = 0;
-    stack[n++] = WhittedBranch{ray, Spectrum(1), 1, 0};
-    while (n > 0) {
-        const WhittedBranch branch = stack[--n];
-        const bool visibleEmitter = !(branch.depth == 0 && settings.hideEmitters);
-        const Vec3f dir = normalize(branch.ray.d);
-        Hit hit;
-        ++rayCount;
-        if (!accel.intersect(branch.ray, hit)) {
-            if (visibleEmitter) result += branch.throughput * environmentRadiance(scene, dir);
-            continue;
-        }
-        const SurfaceInteraction si = computeInteraction(scene, branch.ray, hit);
-        const Vec3f wo = -dir;
-        if (visibleEmitter && scene.shapes[si.shape].light >= 0)
-            result += branch.throughput * emittedRadiance(scene, si, wo);
-        if (branch.depth + 1 >= maxDepth) continue;  // no segment left for light or a new ray
+/// The radiance functor MegakernelPass runs per camera sample (megakernel_pass.h): radiance
+/// arriving along the camera ray `ray`; `rayCount` is incremented by the rays traced (closest
+/// hit and shadow).
+struct WhittedRadiance {
+    WhittedSettings settings;
 
-        const uint32_t bsdf = scene.shapes[si.shape].bsdf;
-        if (!isDeltaBsdf(scene.bsdfs, bsdf))
-            result += branch.throughput * whittedDirectLight(scene, accel, sampler, si, wo, bsdf, rayCount);
-
-        DeltaLobe lobes[kMaxDeltaLobes];
-        const int k = deltaLobes(scene.bsdfs, bsdf, si, wo, lobes);
-        if (n + k <= kWhittedStackSize) {
-            // Every lobe, the first one on top (traced next).
-            for (int i = k - 1; i >= 0; --i) pushWhittedBranch(stack, n, branch, si, lobes[i], 1, sampler, settings);
-            continue;
-        }
-        // The stack is full: one lobe, chosen in proportion to its importance.
-        Float total = 0;
-        for (int i = 0; i < k; ++i) total += lobeImportance(lobes[i]);
-        if (!(total > 0)) continue;
-        Float u = sampler.get1D() * total;
-        int chosen = k - 1;
-        for (int i = 0; i < k - 1; ++i) {
-            u -= lobeImportance(lobes[i]);
-            if (u < 0) {
-                chosen = i;
-                break;
+    template <class Intersector, class Sampler>
+    CA_HD Spectrum operator()(const SceneView& scene, const Intersector& accel, Sampler& sampler,
+                              const Ray& ray, uint32_t& rayCount) const {
+        Spectrum result(0);
+        const uint32_t maxDepth = maxDepthOf(settings);
+        if (maxDepth == 0) return result;
+        WhittedBranch stack[kWhittedStackSize];
+        int n = 0;
+        stack[n++] = WhittedBranch{ray, Spectrum(1), 1, 0};
+        while (n > 0) {
+            const WhittedBranch branch = stack[--n];
+            const bool visibleEmitter = !(branch.depth == 0 && settings.hideEmitters);
+            const Vec3f dir = normalize(branch.ray.d);
+            Hit hit;
+            ++rayCount;
+            if (!accel.intersect(branch.ray, hit)) {
+                if (visibleEmitter) result += branch.throughput * environmentRadiance(scene, dir);
+                continue;
             }
+            const SurfaceInteraction si = computeInteraction(scene, branch.ray, hit);
+            const Vec3f wo = -dir;
+            if (visibleEmitter && scene.shapes[si.shape].light >= 0)
+                result += branch.throughput * emittedRadiance(scene, si, wo);
+            if (branch.depth + 1 >= maxDepth) continue;  // no segment left for light or a new ray
+
+            const uint32_t bsdf = scene.shapes[si.shape].bsdf;
+            if (!isDeltaBsdf(scene.bsdfs, bsdf))
+                result += branch.throughput *
+                          whittedDirectLight(scene, accel, sampler, si, wo, bsdf, rayCount);
+
+            DeltaLobe lobes[kMaxDeltaLobes];
+            const int k = deltaLobes(scene.bsdfs, bsdf, si, wo, lobes);
+            if (n + k <= kWhittedStackSize) {
+                // Every lobe, the first one on top (traced next).
+                for (int i = k - 1; i >= 0; --i)
+                    pushWhittedBranch(stack, n, branch, si, lobes[i], 1, sampler, settings);
+                continue;
+            }
+            // The stack is full: one lobe, chosen at random.
+            Float probability = 0;
+            const int chosen = chooseWhittedLobe(lobes, k, sampler.get1D(), probability);
+            if (chosen >= 0)
+                pushWhittedBranch(stack, n, branch, si, lobes[chosen], 1 / probability, sampler,
+                                  settings);
         }
-        const Float probability = lobeImportance(lobes[chosen]) / total;
-        pushWhittedBranch(stack, n, branch, si, lobes[chosen], 1 / probability, sampler, settings);
+        return result;
     }
-    return result;
-}
+};
 
 }  // namespace caustica

@@ -8,21 +8,11 @@
 
 namespace caustica {
 
-/// Emission, direct light and perfect specular recursion (whitted_kernel.h).
-struct WhittedRadiance {
-    WhittedSettings settings;
-    template <class Intersector, class Sampler>
-    CA_HD Spectrum operator()(const SceneView& view, const Intersector& accel, Sampler& sampler, const Ray& ray,
-                              uint32_t& rays) const {
-        return whittedRadiance(view, accel, sampler, ray, settings, rays);
-    }
-};
-
 template <>
 std::unique_ptr<PassDriver> makeWhittedPass<DriverExec>(const Scene& scene, const Accel& accel,
                                                         const WhittedSettings& settings) {
-    return std::make_unique<MegakernelPass<DriverExec, WhittedRadiance>>(scene, accel, WhittedRadiance{settings},
-                                                                         "whitted.megakernel");
+    return std::make_unique<MegakernelPass<DriverExec, WhittedRadiance>>(
+        scene, accel, WhittedRadiance{settings}, "whitted.megakernel");
 }
 
 }  // namespace caustica

@@ -55,6 +55,12 @@ struct WhittedBranch {
     uint32_t depth;  // segments traced before `ray`
 };
 
+/// The shadow ray from surface point `si` to the light sample `ls`: to its point, or along ls.wi
+/// without end for the environment and directional lights.
+CA_HD_INLINE Ray shadowRayTo(const SurfaceInteraction& si, const LightSample& ls) {
+    return ls.dist < kInfinity ? spawnRayTo(si.p, si.ng, ls.p, ls.n) : spawnRay(si.p, si.ng, ls.wi);
+}
+
 /// Direct light at a smooth surface: one sample of every emitter, each with a shadow ray.
 template <class Intersector, class Sampler>
 CA_HD Spectrum whittedDirectLight(const SceneView& scene, const Intersector& accel,
@@ -70,10 +76,8 @@ CA_HD Spectrum whittedDirectLight(const SceneView& scene, const Intersector& acc
             continue;
         const Spectrum f = evalBsdf(scene.bsdfs, bsdf, si, wo, ls.wi);
         if (f.isBlack()) continue;
-        const Ray shadow = ls.dist < kInfinity ? spawnRayTo(si.p, si.ng, ls.p, ls.n)
-                                               : spawnRay(si.p, si.ng, ls.wi);
         ++rayCount;
-        if (!accel.occluded(shadow)) sum += f * ls.Le * (1 / ls.pdf);
+        if (!accel.occluded(shadowRayTo(si, ls))) sum += f * ls.Le * (1 / ls.pdf);
     }
     return sum;
 }

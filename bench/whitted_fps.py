@@ -6,7 +6,9 @@ A frame is one sample per pixel at the given resolution. Each scene is rendered 
 --spp-per-pass 1, so every pass is one frame, and frames/s = FRAMES / the render's seconds (the
 stats JSON's `seconds`: rendering only, after the scene is loaded and its BVH built; a preview
 renders frame after frame on a loaded scene). The first frame's wall time of a separate
-`--spp 1` run, loading and BVH build included, is given beside it. The path tracer at 1 sample
+`--spp 1` run, loading and BVH build included, is given beside it, and the CPU seconds the
+process used per wall second (below the thread count on a shared machine) and per extra frame
+(the difference of the two runs' CPU time over FRAMES - 1). The path tracer at 1 sample
 per pixel (its own max_depth) can be measured too for comparison (--integrators whitted,path).
 
 Example:
@@ -18,6 +20,7 @@ Options the script does not know are passed on to every `caustica render`.
 import argparse
 import json
 import os
+import resource
 import subprocess
 import sys
 import tempfile
@@ -38,13 +41,14 @@ def render(a, tmp, scene, integrator, spp):
            '--seed', '1', '--device', a.device]
     if a.threads:
         cmd += ['--threads', str(a.threads)]
-    start = time.perf_counter()
+    start, cpu_start = time.perf_counter(), resource.getrusage(resource.RUSAGE_CHILDREN)
     p = subprocess.run(cmd + a.extra, capture_output=True, text=True)
-    wall = time.perf_counter() - start
+    wall, cpu_end = time.perf_counter() - start, resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (cpu_end.ru_utime + cpu_end.ru_stime) - (cpu_start.ru_utime + cpu_start.ru_stime)
     if p.returncode != 0:
         sys.exit('failed (%d): %s\n%s' % (p.returncode, ' '.join(cmd), p.stderr.strip()))
     with open(stats) as f:
-        return json.load(f), wall
+        return json.load(f), wall, cpu
 
 
 def main():
@@ -62,8 +66,8 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         for scene in a.scenes.split(','):
             for integrator in a.integrators.split(','):
-                first, first_wall = render(a, tmp, scene, integrator, 1)
-                st, _ = render(a, tmp, scene, integrator, a.frames)
+                first, first_wall, first_cpu = render(a, tmp, scene, integrator, 1)
+                st, wall, cpu = render(a, tmp, scene, integrator, a.frames)
                 seconds = float(st['seconds'])
                 row = {'scene': scene, 'integrator': integrator, 'res': a.res, 'device': a.device,
                        'threads': a.threads or os.cpu_count(), 'frames': a.frames, 'render_seconds': seconds,
@@ -71,11 +75,15 @@ def main():
                        'rays_per_frame': float(st['rays']) / a.frames,
                        'rays_per_second': st['rays_per_second'],
                        'first_frame_wall_seconds': first_wall,
+                       # CPU seconds of the process per wall second: below the thread count when
+                       # the machine is shared (the frame rate is then pessimistic)
+                       'cpu_utilisation': cpu / wall,
+                       'frames_cpu_seconds_per_frame': (cpu - first_cpu) / (a.frames - 1) if a.frames > 1 else '',
                        'accel_build_seconds': first['accel_build_seconds']}
                 rows.append(row)
-                print('%-14s %-8s %s: %.3f frames/s (%.0f ms/frame, %.3g rays/frame), first frame %.2f s wall' % (
-                    scene, integrator, a.res, row['frames_per_second'], row['ms_per_frame'], row['rays_per_frame'],
-                    first_wall), flush=True)
+                print('%-14s %-8s %s: %.3f frames/s (%.0f ms/frame, %.3g rays/frame), first frame %.2f s wall, '
+                      'CPU use %.2f cores' % (scene, integrator, a.res, row['frames_per_second'], row['ms_per_frame'],
+                                              row['rays_per_frame'], first_wall, row['cpu_utilisation']), flush=True)
     write_csv(a.csv, rows)
 
 

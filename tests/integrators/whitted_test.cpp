@@ -8,6 +8,7 @@
 //  - the path tracer with the same max_depth on a scene whose only light paths are specular
 //    chains ending in direct light (area and point light): equal within statistical error, and
 //    the test rejects whitted with one segment less;
+//  - white furnace: glass and mirror spheres in a constant environment;
 //  - bit-identical samples with 1 and 2 threads.
 // Resume and the command line: tests/e2e/whitted_cli_test.cpp.
 #include <gtest/gtest.h>
@@ -223,6 +224,31 @@ TEST(Whitted, EqualsThePathTracerOnSpecularChainsEndingInDirectLight) {
         compare(statsOf(renderWhitted(scene, accel, whitted(3), kSpp, 2)), pathStats);
     EXPECT_GT(std::abs(wrong.imageZ), kMaxImageZ);
     EXPECT_GT(wrong.fractionAbove4, kMaxFractionAbove4);
+}
+
+// White furnace: in a constant environment a glass sphere and a perfect mirror sphere neither gain
+// nor lose light (every branch ends in the environment; Fresnel splits and the η² radiance
+// scaling in and out cancel), unbounded with roulette from depth 5.
+TEST(Whitted, FurnaceGlassAndMirrorSpheresNeitherGainNorLose) {
+    Bsdf glass, mirror;
+    glass.type = BsdfType::Dielectric;
+    glass.reflectance = Spectrum(1);
+    mirror.type = BsdfType::Conductor;
+    mirror.eta = Spectrum(0);
+    mirror.k = Spectrum(1);
+    mirror.reflectance = Spectrum(1);
+    for (const Bsdf& b : {glass, mirror}) {
+        Scene scene;
+        scene.bsdfs = {b};
+        addSphere(scene, {0, 0, 5}, 1);
+        addConstantLight(scene, Spectrum(0.5f));
+        finalizeLights(scene);
+        orthographicCamera(scene, 8, 0.9f);
+        const Accel accel(scene, AccelKind::Bvh);
+        const PixelStats stats = statsOf(renderWhitted(scene, accel, whitted(-1), 64, 5));
+        EXPECT_NEAR(stats.imageMean, 0.5, 4 * std::sqrt(stats.imageVarOfMean) + 1e-5)
+            << (b.type == BsdfType::Dielectric ? "glass" : "mirror");
+    }
 }
 
 TEST(Whitted, OneAndTwoThreadsGiveBitIdenticalSamples) {

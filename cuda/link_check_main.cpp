@@ -10,9 +10,10 @@ int main() {
     // The GPU's instantiations of the single-source drivers (cuda/*_driver.cu).
     auto path = &caustica::makePathPass<caustica::GpuExec>;
     auto direct = &caustica::makeDirectPass<caustica::GpuExec>;
+    auto whitted = &caustica::makeWhittedPass<caustica::GpuExec>;
     caustica::registerCudaBackend();  // installs function pointers only; touches no GPU
     const caustica::GpuBackend* backend = caustica::gpuBackend();
-    std::printf("caustica GPU drivers linked: path %s, direct %s, primitives backend %s\n", path ? "yes" : "no",
-                direct ? "yes" : "no", backend ? backend->name : "no");
+    std::printf("caustica GPU drivers linked: path %s, direct %s, whitted %s, primitives backend %s\n",
+                path ? "yes" : "no", direct ? "yes" : "no", whitted ? "yes" : "no", backend ? backend->name : "no");
     return backend ? 0 : 1;
 }

@@ -222,7 +222,7 @@ TEST(Integrator, BadSettingsInASceneFileRefuseTheRender) {
 TEST(Integrator, RegistryDescribesEveryIntegrator) {
     const std::map<std::string, std::string> expected = {
         {"path", "max_depth -1, rr_depth 5"}, {"direct", "emitter_samples 1, bsdf_samples 1"}, {"mlt", "chains 1024"},
-        {"sppm", "photon_count 131072"}, {"ppm", "hitpoints 1"}};
+        {"sppm", "photon_count 131072"}, {"ppm", "hitpoints 1"}, {"whitted", "max_depth -1, rr_depth 5"}};
     ASSERT_EQ(integratorRegistry().size(), expected.size());
     for (const IntegratorEntry& e : integratorRegistry()) {
         SCOPED_TRACE(e.name);

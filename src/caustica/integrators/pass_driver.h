@@ -1,5 +1,5 @@
 // pass_driver.h — the drivers of the integrators that render by passes of K samples per pixel
-// (path, direct). Each is written once against launch.h and compiled per device: g++ builds the
+// (path, direct, whitted). Each is written once against launch.h and compiled per device: g++ builds the
 // CPU's, nvcc (cuda/*_driver.cu) the GPU's, from the same .cpp. A pass's samples end in host
 // memory, where the Film accumulates them.
 #pragma once
@@ -13,6 +13,7 @@
 #include "caustica/integrators/direct/direct_kernel.h"
 #include "caustica/integrators/path/gpu_memory.h"
 #include "caustica/integrators/path/path_kernel.h"
+#include "caustica/integrators/whitted/whitted_kernel.h"
 #include "caustica/parallel/launch.h"
 #include "caustica/scene/scene.h"
 
@@ -42,5 +43,8 @@ std::unique_ptr<PassDriver> makePathPass(const Scene& scene, const Accel& accel,
 /// The direct-lighting integrator on the device of `Exec`. Defined per device by direct_pass.cpp.
 template <class Exec>
 std::unique_ptr<PassDriver> makeDirectPass(const Scene& scene, const Accel& accel, const DirectSettings& settings);
+/// Whitted ray tracing on the device of `Exec`. Defined per device by whitted_pass.cpp.
+template <class Exec>
+std::unique_ptr<PassDriver> makeWhittedPass(const Scene& scene, const Accel& accel, const WhittedSettings& settings);
 
 }  // namespace caustica

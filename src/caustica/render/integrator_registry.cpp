@@ -2,6 +2,7 @@
 
 #include "caustica/integrators/mlt/mlt_settings.h"
 #include "caustica/integrators/sppm/sppm_settings.h"
+#include "caustica/integrators/whitted/whitted_settings.h"
 #include "caustica/util/error.h"
 
 namespace caustica {
@@ -17,6 +18,8 @@ const std::vector<IntegratorEntry>& integratorRegistry() {
          makePathSession},
         {"direct", "direct illumination (emitter and BSDF sampling, MIS)", kNoOptions, runsOnGpu, describeDirect,
          makeDirectSession},
+        {"whitted", "Whitted ray tracing: mirror and glass recursion, direct light from every emitter", whittedOptions(),
+         runsOnGpu, describePath, makeWhittedSession},
         {"mlt", "many-chain primary-sample-space Metropolis light transport", mltOptions(), mltGpuRefusal,
          describeMlt, makeMltSession},
         {"sppm", "stochastic progressive photon mapping (Hachisuka & Jensen 2009)", sppmOptions(), runsOnGpu,

@@ -56,6 +56,7 @@ IntegratorParams integratorParams(const IntegratorSpec& spec, const std::string&
 /// The sessions (pass_session.cpp, mlt_session.cpp, sppm_session.cpp) and their registry functions.
 std::unique_ptr<IntegratorSession> makePathSession(const SessionContext& context);
 std::unique_ptr<IntegratorSession> makeDirectSession(const SessionContext& context);
+std::unique_ptr<IntegratorSession> makeWhittedSession(const SessionContext& context);
 std::unique_ptr<IntegratorSession> makeMltSession(const SessionContext& context);
 std::unique_ptr<IntegratorSession> makeSppmSession(const SessionContext& context);
 std::unique_ptr<IntegratorSession> makePpmSession(const SessionContext& context);

@@ -1,6 +1,6 @@
 // pass_session.cpp — the session of the integrators that render by passes of K samples per pixel
-// (path, direct): a driver fills a SamplePass, the Film accumulates it; the checkpoint payload is
-// the film's sums.
+// (path, direct, whitted): a driver fills a SamplePass, the Film accumulates it; the checkpoint
+// payload is the film's sums.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -123,6 +123,14 @@ std::unique_ptr<IntegratorSession> makeDirectSession(const SessionContext& c) {
     auto driver = passDriver(c, PathMode::Megakernel, note,
                              [&](auto exec) { return makeDirectPass<decltype(exec)>(c.scene, c.accel, s); });
     return std::make_unique<PassSession>(c, std::move(driver), directIdentity(s), note);
+}
+
+std::unique_ptr<IntegratorSession> makeWhittedSession(const SessionContext& c) {
+    const WhittedSettings s = readPathSettings(c.params);  // the path tracer's parameters
+    std::string note;
+    auto driver = passDriver(c, PathMode::Megakernel, note,
+                             [&](auto exec) { return makeWhittedPass<decltype(exec)>(c.scene, c.accel, s); });
+    return std::make_unique<PassSession>(c, std::move(driver), pathIdentity(s), note);
 }
 
 std::string describePath(IntegratorParams& params) { return describe(pathIdentity(readPathSettings(params))); }

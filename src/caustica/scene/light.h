@@ -138,14 +138,11 @@ CA_HD_INLINE bool sampleAreaLightPosition(const SceneView& scene, const Light& l
     return true;
 }
 
-/// Samples a light as seen from `refP`: `uSelect` picks the light, `u` the point on it.
-/// Returns false if there is nothing to sample (no lights, back side, zero pdf).
-CA_HD_INLINE bool sampleLight(const SceneView& scene, Vec3f refP, Float uSelect, Vec2f u,
-                              LightSample& out) {
-    const uint32_t n = uint32_t(scene.lights.size());
-    if (n == 0) return false;
-    const uint32_t index = min(uint32_t(uSelect * Float(n)), n - 1);
-    const Float selPdf = Float(1) / Float(n);
+/// Samples light `index` as seen from `refP` (`u` picks the point on it); `selPdf`, the
+/// probability of having chosen that light, multiplies out.pdf. Returns false if there is
+/// nothing to sample (back side, zero pdf).
+CA_HD_INLINE bool sampleLightIndex(const SceneView& scene, uint32_t index, Float selPdf, Vec3f refP,
+                                   Vec2f u, LightSample& out) {
     const Light& light = scene.lights[index];
     out.light = index;
     out.delta = false;
@@ -221,6 +218,16 @@ CA_HD_INLINE bool sampleLight(const SceneView& scene, Vec3f refP, Float uSelect,
     out.Le = light.radiance;
     out.pdf = pdf * selPdf;
     return true;
+}
+
+/// Samples a light as seen from `refP`: `uSelect` picks the light (uniformly), `u` the point on
+/// it. Returns false if there is nothing to sample (no lights, back side, zero pdf).
+CA_HD_INLINE bool sampleLight(const SceneView& scene, Vec3f refP, Float uSelect, Vec2f u,
+                              LightSample& out) {
+    const uint32_t n = uint32_t(scene.lights.size());
+    if (n == 0) return false;
+    const uint32_t index = min(uint32_t(uSelect * Float(n)), n - 1);
+    return sampleLightIndex(scene, index, Float(1) / Float(n), refP, u, out);
 }
 
 /// Solid-angle pdf (incl. selection) with which sampleLight would pick the point `onLight` of

@@ -6,6 +6,7 @@
 // | path          | path    | max_depth, rr_depth, hide_emitters                               |
 // | direct        | direct  | shading_samples, emitter_samples, bsdf_samples, hide_emitters    |
 // | mlt, pssmlt   | mlt     | the path parameters, chains, luminance_samples, p_large, ...     |
+// | whitted       | whitted | max_depth, rr_depth, hide_emitters (caustica's own, not Mitsuba) |
 //
 // Other Mitsuba integrators (volpath, volpathmis, prb, ptracer, aov, depth, ... and Mitsuba 0.6's
 // bdpt, sppm, ...) are rendered with the nearest caustica integrator, with a warning naming the
@@ -24,7 +25,7 @@ namespace {
 
 /// The caustica integrator a Mitsuba type runs as, or "" when it has none of its own.
 std::string nativeType(const std::string& type) {
-    if (type == "path" || type == "direct" || type == "mlt" || type == "sppm") return type;
+    if (type == "path" || type == "direct" || type == "mlt" || type == "sppm" || type == "whitted") return type;
     if (type == "pssmlt") return "mlt";  // Mitsuba 0.6's name; the same parameters
     return {};
 }

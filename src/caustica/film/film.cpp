@@ -62,16 +62,16 @@ void Film::addPass(const SamplePass& pass) {
     if (pass.samplesPerPixel == 0) return;
 
     FilmSplatView view;
-    view.width = width_;
-    view.height = height_;
-    view.samplesPerPixel = pass.samplesPerPixel;
-    view.footprint = filter_.footprint();
-    view.filter = filter_;
+    view.grid.width = width_;
+    view.grid.height = height_;
+    view.grid.samplesPerPixel = pass.samplesPerPixel;
+    view.grid.footprint = filter_.footprint();
+    view.grid.filter = filter_;
+    weightScratch_.resize(pass.samples.size() * size_t(2 * (2 * view.grid.footprint + 1)));
+    view.grid.weights = weightScratch_.data();
+    view.grid.invalid = invalidScratch_.data();
     view.samples = pass.samples.data();
-    weightScratch_.resize(pass.samples.size() * size_t(2 * (2 * view.footprint + 1)));
-    view.weights = weightScratch_.data();
     view.sums = sums_.data();
-    view.invalid = invalidScratch_.data();
     parallelFor(device_, "film_sample_weights", sums_.size(),
                 [view](size_t pixel) { sampleWeights(view, pixel); });
     parallelFor(device_, "film_gather", sums_.size(),

@@ -29,7 +29,6 @@ def main():
         open(xml, "w").write(wrapped.replace('="meshes/', '="../meshes/'))
         scene = mi.load_file(xml, width=a.res, height=a.res, spp=a.spp)
         img = mi.render(scene, spp=a.spp)
-        names = scene.sensors()[0].film().bitmap().channel_names() if False else None
         bmp = scene.sensors()[0].film().bitmap()
         mits = {n: np.array(l) for n, l in bmp.split()}
         out = os.path.join(tmp, "c.exr")

@@ -50,14 +50,7 @@ void AovFilm::addPass(const AovSamplePass& pass) {
                     std::to_string(height_) + ", " + std::to_string(channels_) + " channels)");
     if (pass.samplesPerPixel == 0) return;
     AovSplatView view;
-    view.grid.width = width_;
-    view.grid.height = height_;
-    view.grid.samplesPerPixel = pass.samplesPerPixel;
-    view.grid.footprint = filter_.footprint();
-    view.grid.filter = filter_;
-    weightScratch_.resize(pass.positions.size() * size_t(2 * (2 * view.grid.footprint + 1)));
-    view.grid.weights = weightScratch_.data();
-    view.grid.invalid = invalidScratch_.data();
+    view.grid = gatherGrid(width_, height_, pass.samplesPerPixel, filter_, weightScratch_, invalidScratch_);
     view.positions = pass.positions.data();
     view.values = pass.values.data();
     view.channels = channels_;

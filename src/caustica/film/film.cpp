@@ -62,14 +62,7 @@ void Film::addPass(const SamplePass& pass) {
     if (pass.samplesPerPixel == 0) return;
 
     FilmSplatView view;
-    view.grid.width = width_;
-    view.grid.height = height_;
-    view.grid.samplesPerPixel = pass.samplesPerPixel;
-    view.grid.footprint = filter_.footprint();
-    view.grid.filter = filter_;
-    weightScratch_.resize(pass.samples.size() * size_t(2 * (2 * view.grid.footprint + 1)));
-    view.grid.weights = weightScratch_.data();
-    view.grid.invalid = invalidScratch_.data();
+    view.grid = gatherGrid(width_, height_, pass.samplesPerPixel, filter_, weightScratch_, invalidScratch_);
     view.samples = pass.samples.data();
     view.sums = sums_.data();
     parallelFor(device_, "film_sample_weights", sums_.size(),

@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "caustica/film/filter.h"
 #include "caustica/util/math.h"
@@ -34,6 +35,23 @@ struct GatherGrid {
     float* weights = nullptr;     // 2 (2f + 1) per sample
     uint32_t* invalid = nullptr;  // per source pixel: its invalid samples
 };
+
+/// The grid of a width x height pass of K samples per pixel: `weights` sized for it (host
+/// scratch kept across passes), `invalid` one entry per pixel.
+inline GatherGrid gatherGrid(int width, int height, int samplesPerPixel, const Filter& filter,
+                             std::vector<float>& weights, std::vector<uint32_t>& invalid) {
+    GatherGrid g;
+    g.width = width;
+    g.height = height;
+    g.samplesPerPixel = samplesPerPixel;
+    g.footprint = filter.footprint();
+    g.filter = filter;
+    weights.resize(size_t(width) * size_t(height) * size_t(samplesPerPixel) * size_t(2 * (2 * g.footprint + 1)));
+    invalid.resize(size_t(width) * size_t(height));
+    g.weights = weights.data();
+    g.invalid = invalid.data();
+    return g;
+}
 
 /// Offset of film position `pos` inside pixel (px, py) (in [0, 1) per axis), or false when it
 /// is not finite or lies farther than kSampleSlack outside the pixel's square.

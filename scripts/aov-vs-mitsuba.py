@@ -3,7 +3,7 @@
 
     scripts/aov-vs-mitsuba.py CAUSTICA_BINARY SCENE.xml [--res 64] [--spp 16]
 
-Wraps the scene's <integrator> in Mitsuba's aov integrator (depth, sh_normal, geo_normal,
+Wraps the scene's <integrator> in Mitsuba's aov integrator (depth, sh_normal, geo_normal, albedo,
 position, uv), renders it with Mitsuba (scalar_rgb) and with `caustica render --aov` at the same
 size and sample count, and prints per AOV the mean absolute difference over all pixels and over
 the pixels whose 3x3 neighbourhood lies on one surface in both (edges are covered by different
@@ -12,7 +12,7 @@ import argparse, os, re, subprocess, sys, tempfile
 import numpy as np
 import mitsuba as mi
 
-AOVS = "dd.y:depth,nn:sh_normal,ng:geo_normal,pos:position,uv:uv"
+AOVS = "dd.y:depth,nn:sh_normal,ng:geo_normal,pos:position,uv:uv,alb:albedo"
 
 def main():
     ap = argparse.ArgumentParser()
@@ -42,7 +42,7 @@ def main():
     w = win(np.pad(d, 1, mode="edge"), (3, 3))
     interior = (w.max(axis=(2, 3)) - w.min(axis=(2, 3))) < 0.05 * np.maximum(d, 1e-3)
     print("pixels %d, interior %d" % (d.size, interior.sum()))
-    for name in ["dd.y", "nn", "ng", "pos", "uv"]:
+    for name in ["dd.y", "nn", "ng", "pos", "uv", "alb"]:
         m, c = mits[name].reshape(a.res, a.res, -1), caus[name].reshape(a.res, a.res, -1)
         diff = np.abs(m - c).max(axis=2)
         print("%-5s mean |diff| all %.4g, interior %.4g, interior max %.4g (value range %.3g..%.3g)"

@@ -18,14 +18,17 @@ namespace {
 
 TEST(AovSpec, ParsesMitsubasListWithItsChannelNames) {
     const AovSpec spec = parseAovSpec(
-        "dd.y:depth, nn:sh_normal,ng:geo_normal,p:position,uv:uv,a:albedo,pi:prim_index,si:shape_index,v:variance",
+        "dd.y:depth, "
+        "nn:sh_normal,ng:geo_normal,p:position,uv:uv,a:albedo,pi:prim_index,si:shape_index,v:"
+        "variance",
         "--aov");
     ASSERT_EQ(spec.layers.size(), 9u);
     EXPECT_EQ(spec.text(),
-              "dd.y:depth,nn:sh_normal,ng:geo_normal,p:position,uv:uv,a:albedo,pi:prim_index,si:shape_index,v:variance");
-    const std::vector<std::string> expected = {"dd.y.T", "nn.X", "nn.Y", "nn.Z", "ng.X", "ng.Y", "ng.Z", "p.X",
-                                               "p.Y",    "p.Z",  "uv.U", "uv.V", "a.R",  "a.G",  "a.B",  "pi.I",
-                                               "si.I",   "v.R",  "v.G",  "v.B"};
+              "dd.y:depth,nn:sh_normal,ng:geo_normal,p:position,uv:uv,a:albedo,pi:prim_index,si:"
+              "shape_index,v:variance");
+    const std::vector<std::string> expected = {
+        "dd.y.T", "nn.X", "nn.Y", "nn.Z", "ng.X", "ng.Y", "ng.Z", "p.X", "p.Y", "p.Z",
+        "uv.U",   "uv.V", "a.R",  "a.G",  "a.B",  "pi.I", "si.I", "v.R", "v.G", "v.B"};
     EXPECT_EQ(spec.channelNames(), expected);
     EXPECT_TRUE(spec.has(AovType::Variance));
     EXPECT_FALSE(parseAovSpec("d:depth", "x").has(AovType::Albedo));
@@ -64,7 +67,8 @@ void randomPasses(int w, int h, int k, SamplePass& rgb, AovSamplePass& aov) {
             IndependentSampler rng(pixel, uint64_t(s), 5);
             const size_t slot = pixel * size_t(k) + size_t(s);
             const Vec2f jitter = rng.get2D();
-            const Vec2f pos(Float(pixel % size_t(w)) + jitter.x, Float(pixel / size_t(w)) + jitter.y);
+            const Vec2f pos(Float(pixel % size_t(w)) + jitter.x,
+                            Float(pixel / size_t(w)) + jitter.y);
             const Spectrum L(rng.get1D() * 4, rng.get1D(), rng.get1D() * 0.5f);
             rgb.samples[slot] = PixelSample{pos, L};
             aov.positions[slot] = pos;
@@ -98,8 +102,10 @@ TEST(AovFilm, SameBitsForOneAndTwoThreadsAndManyChannels) {
         IndependentSampler rng(slot, 0, 9);
         const size_t pixel = slot / size_t(k);
         const Vec2f j = rng.get2D();
-        pass.positions[slot] = Vec2f(Float(pixel % size_t(w)) + j.x, Float(pixel / size_t(w)) + j.y);
-        for (int c = 0; c < C; ++c) pass.values[slot * C + size_t(c)] = rng.get1D() - 0.5f;  // negative too
+        pass.positions[slot] =
+            Vec2f(Float(pixel % size_t(w)) + j.x, Float(pixel / size_t(w)) + j.y);
+        for (int c = 0; c < C; ++c)
+            pass.values[slot * C + size_t(c)] = rng.get1D() - 0.5f;  // negative too
     }
     pass.values[5] = std::nanf("");  // drops slot 0 from every channel
     auto develop = [&](int threads) {
@@ -146,7 +152,8 @@ TEST(PixelVariance, MatchesTheHandComputedSampleVariance) {
     const float values[2][4] = {{1, 2, 4, 7}, {3, 3, 3, 3}};
     for (int x = 0; x < 2; ++x)
         for (int k = 0; k < 4; ++k)
-            pass.at(x, 0, k) = PixelSample{Vec2f(Float(x) + 0.5f, 0.5f), Spectrum(values[x][k], 0, 2 * values[x][k])};
+            pass.at(x, 0, k) = PixelSample{Vec2f(Float(x) + 0.5f, 0.5f),
+                                           Spectrum(values[x][k], 0, 2 * values[x][k])};
     PixelVariance variance(2, 1);
     variance.addPass(pass);
     std::vector<float> v = variance.develop();

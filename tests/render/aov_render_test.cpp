@@ -18,14 +18,16 @@ namespace caustica::test {
 namespace {
 
 constexpr const char* kAllGeometric =
-    "dd.y:depth,nn:sh_normal,ng:geo_normal,p:position,uv:uv,alb:albedo,pi:prim_index,si:shape_index";
+    "dd.y:depth,nn:sh_normal,ng:geo_normal,p:position,uv:uv,alb:albedo,pi:prim_index,si:shape_"
+    "index";
 
 /// An orthographic camera at z = 5 looking down at the rectangle [-2, 2]² in z = 0 (it sees
 /// [-1, 1]²: film x -> world x, film y -> world -y), 16 x 16 pixels, box filter; a sphere light
 /// outside the view. `shift` moves the rectangle out of the view.
 std::string planeScene(const std::string& integrator, float shift = 0) {
     return R"(<scene version="3.0.0">
-)" + integrator + R"(
+)" + integrator +
+           R"(
     <sensor type="orthographic">
         <transform name="to_world"><lookat origin="0, 0, 5" target="0, 0, 0" up="0, 1, 0"/></transform>
         <film type="hdrfilm"><integer name="width" value="16"/><integer name="height" value="16"/>
@@ -43,7 +45,8 @@ std::string planeScene(const std::string& integrator, float shift = 0) {
 )";
 }
 
-const std::string kPath = R"(<integrator type="path"><integer name="max_depth" value="3"/></integrator>)";
+const std::string kPath =
+    R"(<integrator type="path"><integer name="max_depth" value="3"/></integrator>)";
 
 RenderRequest request(const std::string& aovs, const std::string& integrator = "") {
     RenderRequest r;
@@ -54,16 +57,19 @@ RenderRequest request(const std::string& aovs, const std::string& integrator = "
     r.aovs = aovs;
     r.integrator = integrator;
     if (integrator == "mlt")
-        r.integratorParams = {{"chains", IntegratorParam::Kind::Text, "16", "--mlt-chains"},
-                              {"luminance_samples", IntegratorParam::Kind::Text, "256", "--mlt-bootstrap"},
-                              {"splat", IntegratorParam::Kind::Text, "sort", "--splat"}};
+        r.integratorParams = {
+            {"chains", IntegratorParam::Kind::Text, "16", "--mlt-chains"},
+            {"luminance_samples", IntegratorParam::Kind::Text, "256", "--mlt-bootstrap"},
+            {"splat", IntegratorParam::Kind::Text, "sort", "--splat"}};
     if (integrator == "sppm")
-        r.integratorParams = {{"photon_count", IntegratorParam::Kind::Text, "2048", "--sppm-photons"},
-                              {"initial_radius", IntegratorParam::Kind::Text, "0", "--sppm-radius"}};
+        r.integratorParams = {
+            {"photon_count", IntegratorParam::Kind::Text, "2048", "--sppm-photons"},
+            {"initial_radius", IntegratorParam::Kind::Text, "0", "--sppm-radius"}};
     return r;
 }
 
-std::unique_ptr<Renderer> makeRenderer(const TempDir& dir, const std::string& xml, const RenderRequest& r) {
+std::unique_ptr<Renderer> makeRenderer(const TempDir& dir, const std::string& xml,
+                                       const RenderRequest& r) {
     std::vector<std::string> warnings;
     return std::make_unique<Renderer>(loadScene(dir.write("scene.xml", xml), {}, &warnings), r);
 }
@@ -100,7 +106,8 @@ TEST(AovRender, PlaneValuesMatchTheGeometry) {
             EXPECT_FLOAT_EQ(a.at(x, y, 12), 0.3f);  // albedo: the diffuse reflectance
             EXPECT_FLOAT_EQ(a.at(x, y, 13), 0.5f);
             EXPECT_FLOAT_EQ(a.at(x, y, 14), 0.7f);
-            // prim_index: triangle 0 (x > y) or 1, away from the diagonal; shape_index: 1 + shape 0.
+            // prim_index: triangle 0 (x > y) or 1, away from the diagonal; shape_index: 1 + shape
+            // 0.
             const float cx = -1 + (x + 0.5f) / 8, cy = 1 - (y + 0.5f) / 8;
             if (std::abs(cx - cy) > 0.3f) {
                 EXPECT_EQ(a.at(x, y, 15), cx > cy ? 0.0f : 1.0f);
@@ -167,10 +174,11 @@ TEST(AovRender, VarianceIsTheSampleVarianceOfThePixelMean) {
                 }
             const double expected = ss / (n - 1) / n;
             const float got = a.at(pixel % 16, pixel / 16, size_t(c));
-            EXPECT_NEAR(got, expected, 1e-5 * std::max(1.0, expected)) << "pixel " << pixel << " channel " << c;
+            EXPECT_NEAR(got, expected, 1e-5 * std::max(1.0, expected))
+                << "pixel " << pixel << " channel " << c;
             nonZero += got > 0;
         }
-    EXPECT_GT(nonZero, 100);  // the plane is noisy: the test sees real variances
+    EXPECT_GT(nonZero, 100);                   // the plane is noisy: the test sees real variances
     EXPECT_NEAR(a.at(3, 3, 3), 4.99f, 1e-5f);  // depth after the variance
 }
 
@@ -181,7 +189,8 @@ TEST(AovRender, VarianceIsRefusedForIntegratorsWithoutPixelSamples) {
             makeRenderer(dir, planeScene(kPath), request("v:variance", integrator));
             ADD_FAILURE() << integrator << " accepted the variance AOV";
         } catch (const Error& e) {
-            EXPECT_NE(std::string(e.what()).find("variance AOV needs independent pixel samples"), std::string::npos)
+            EXPECT_NE(std::string(e.what()).find("variance AOV needs independent pixel samples"),
+                      std::string::npos)
                 << e.what();
         }
     }
@@ -191,7 +200,8 @@ TEST(AovRender, SameAovsForOneAndTwoThreads) {
     TempDir dir;
     auto aovs = [&](int threads) {
         tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
-        return renderAovs(dir, planeScene(kPath), request(std::string(kAllGeometric) + ",v:variance"));
+        return renderAovs(dir, planeScene(kPath),
+                          request(std::string(kAllGeometric) + ",v:variance"));
     };
     EXPECT_TRUE(aovs(1).values == aovs(2).values);
 }
@@ -238,14 +248,15 @@ TEST(AovRender, ExrOutputHoldsTheLayersAndPngTheImage) {
 TEST(AovScene, MitsubaAovIntegratorKeepsItsNestedIntegrator) {
     TempDir dir;
     std::vector<std::string> warnings;
-    const Scene scene = loadXml(dir,
-                                sceneXml("<integrator type=\"aov\">\n"
-                                         "<string name=\"aovs\" value=\"dd.y:depth,nn:sh_normal\"/>\n"
-                                         "<integrator type=\"direct\" name=\"my_image\">\n"
-                                         "<integer name=\"emitter_samples\" value=\"2\"/></integrator>\n"
-                                         "<integrator type=\"path\" name=\"second\"/>\n"
-                                         "</integrator>"),
-                                &warnings);
+    const Scene scene =
+        loadXml(dir,
+                sceneXml("<integrator type=\"aov\">\n"
+                         "<string name=\"aovs\" value=\"dd.y:depth,nn:sh_normal\"/>\n"
+                         "<integrator type=\"direct\" name=\"my_image\">\n"
+                         "<integer name=\"emitter_samples\" value=\"2\"/></integrator>\n"
+                         "<integrator type=\"path\" name=\"second\"/>\n"
+                         "</integrator>"),
+                &warnings);
     EXPECT_EQ(scene.integrator.type, "direct");
     EXPECT_EQ(integratorParam(scene, "emitter_samples"), "2");
     EXPECT_EQ(scene.integrator.aovs, "dd.y:depth,nn:sh_normal");
@@ -263,14 +274,17 @@ TEST(AovScene, BadListsAreRefusedWithTheirLine) {
     TempDir dir;
     expectError(
         [&] {
-            loadXml(dir, sceneXml("<integrator type=\"aov\">\n<string name=\"aovs\" value=\"dd.y:dpth\"/>\n"
-                                  "<integrator type=\"path\"/></integrator>"));
+            loadXml(
+                dir,
+                sceneXml("<integrator type=\"aov\">\n<string name=\"aovs\" value=\"dd.y:dpth\"/>\n"
+                         "<integrator type=\"path\"/></integrator>"));
         },
         "scene.xml", 4, "unknown AOV type 'dpth'");
     expectError(
         [&] {
-            loadXml(dir, sceneXml("<integrator type=\"aov\">\n<string name=\"aovs\" value=\"depth\"/>\n"
-                                  "<integrator type=\"path\"/></integrator>"));
+            loadXml(dir,
+                    sceneXml("<integrator type=\"aov\">\n<string name=\"aovs\" value=\"depth\"/>\n"
+                             "<integrator type=\"path\"/></integrator>"));
         },
         "scene.xml", 4, "not a NAME:TYPE pair");
     expectError([&] { makeRenderer(dir, planeScene(kPath), request("d:normal")); }, "--aov", 0,

@@ -19,19 +19,21 @@ constexpr char kMagic[8] = {'C', 'A', 'A', 'O', 'V', 'F', '\r', '\n'};
 constexpr uint32_t kVersion = 1;
 }  // namespace
 
-AovSamplePass::AovSamplePass(int w, int h, int k, int c) : width(w), height(h), samplesPerPixel(k), channels(c) {
+AovSamplePass::AovSamplePass(int w, int h, int k, int c)
+    : width(w), height(h), samplesPerPixel(k), channels(c) {
     if (w < 0 || h < 0 || k < 0 || c < 0 || uint64_t(w) * uint64_t(h) > kMaxImagePixels ||
         uint64_t(w) * uint64_t(h) * uint64_t(k) * uint64_t(c + 2) > (uint64_t(1) << 32))
-        throw Error("aov sample pass " + std::to_string(w) + " x " + std::to_string(h) + " x " + std::to_string(k) +
-                    " spp x " + std::to_string(c) + " channels is negative or too large");
+        throw Error("aov sample pass " + std::to_string(w) + " x " + std::to_string(h) + " x " +
+                    std::to_string(k) + " spp x " + std::to_string(c) +
+                    " channels is negative or too large");
     positions.resize(size_t(w) * size_t(h) * size_t(k));
     values.resize(positions.size() * size_t(c));
 }
 
 AovFilm::AovFilm(int width, int height, const Filter& filter, int channels, Device device)
     : filter_(filter), device_(device) {
-    if (width <= 0 || height <= 0 || uint64_t(width) * uint64_t(height) > kMaxImagePixels || channels <= 0 ||
-        channels > 256)
+    if (width <= 0 || height <= 0 || uint64_t(width) * uint64_t(height) > kMaxImagePixels ||
+        channels <= 0 || channels > 256)
         throw Error("aov film " + std::to_string(width) + " x " + std::to_string(height) + " x " +
                     std::to_string(channels) + " channels is not positive or too large");
     width_ = width;
@@ -46,15 +48,18 @@ void AovFilm::addPass(const AovSamplePass& pass) {
     if (pass.width != width_ || pass.height != height_ || pass.channels != channels_ ||
         pass.positions.size() != pixels * size_t(pass.samplesPerPixel) ||
         pass.values.size() != pass.positions.size() * size_t(channels_))
-        throw Error("aov sample pass does not match the aov film (" + std::to_string(width_) + " x " +
-                    std::to_string(height_) + ", " + std::to_string(channels_) + " channels)");
+        throw Error("aov sample pass does not match the aov film (" + std::to_string(width_) +
+                    " x " + std::to_string(height_) + ", " + std::to_string(channels_) +
+                    " channels)");
     if (pass.samplesPerPixel == 0) return;
     AovSplatView view;
-    view.grid = gatherGrid(width_, height_, pass.samplesPerPixel, filter_, weightScratch_, invalidScratch_);
+    view.grid =
+        gatherGrid(width_, height_, pass.samplesPerPixel, filter_, weightScratch_, invalidScratch_);
     view.positions = pass.positions.data();
     view.values = pass.values.data();
     view.channels = channels_;
-    parallelFor(device_, "aov_film_weights", pixels, [view](size_t pixel) { gatherWeights(view.grid, view, pixel); });
+    parallelFor(device_, "aov_film_weights", pixels,
+                [view](size_t pixel) { gatherWeights(view.grid, view, pixel); });
     double* sums = sums_.data();
     const int C = channels_;
     // One gather per group of kAovGatherChannels channels; the first also adds sum(w).
@@ -112,8 +117,8 @@ void AovFilm::load(std::istream& in) {
     if (r.u32() != kVersion) throw Error("aov film checkpoint: unsupported version");
     const int w = int(r.u32()), h = int(r.u32()), c = int(r.u32());
     if (w != width_ || h != height_ || c != channels_)
-        throw Error("aov film checkpoint: " + std::to_string(w) + " x " + std::to_string(h) + " x " +
-                    std::to_string(c) + " channels does not match the render's");
+        throw Error("aov film checkpoint: " + std::to_string(w) + " x " + std::to_string(h) +
+                    " x " + std::to_string(c) + " channels does not match the render's");
     const uint32_t type = r.u32();
     const float radius = r.f32(), stddev = r.f32();
     if (type != uint32_t(filter_.type) || radius != filter_.radius || stddev != filter_.stddev)

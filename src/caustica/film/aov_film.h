@@ -35,7 +35,7 @@ struct AovSplatView {
     GatherGrid grid;
     const Vec2f* positions = nullptr;
     const float* values = nullptr;
-    int channels = 0;    // per sample
+    int channels = 0;      // per sample
     int firstChannel = 0;  // of this group
 
     CA_HD bool position(size_t i, Vec2f& pos) const {
@@ -52,7 +52,8 @@ struct AovSplatView {
 
 class AovFilm {
 public:
-    AovFilm(int width, int height, const Filter& filter, int channels, Device device = Device::cpu());
+    AovFilm(int width, int height, const Filter& filter, int channels,
+            Device device = Device::cpu());
 
     int width() const { return width_; }
     int height() const { return height_; }

@@ -28,7 +28,9 @@ const std::vector<TypeInfo>& typeTable() {
     return table;
 }
 
-const TypeInfo& info(AovType type) { return typeTable()[size_t(type)]; }
+const TypeInfo& info(AovType type) {
+    return typeTable()[size_t(type)];
+}
 
 std::string trim(const std::string& s) {
     const size_t a = s.find_first_not_of(" \t\r\n"), b = s.find_last_not_of(" \t\r\n");
@@ -43,13 +45,20 @@ std::string knownTypes() {
 
 }  // namespace
 
-int aovChannelCount(AovType type) { return int(info(type).suffixes.size()); }
-const char* aovTypeName(AovType type) { return info(type).name; }
-std::vector<std::string> aovChannelSuffixes(AovType type) { return info(type).suffixes; }
+int aovChannelCount(AovType type) {
+    return int(info(type).suffixes.size());
+}
+const char* aovTypeName(AovType type) {
+    return info(type).name;
+}
+std::vector<std::string> aovChannelSuffixes(AovType type) {
+    return info(type).suffixes;
+}
 
 std::string AovSpec::text() const {
     std::string out;
-    for (const AovLayer& l : layers) out += (out.empty() ? "" : ",") + l.name + ":" + aovTypeName(l.type);
+    for (const AovLayer& l : layers)
+        out += (out.empty() ? "" : ",") + l.name + ":" + aovTypeName(l.type);
     return out;
 }
 
@@ -68,7 +77,8 @@ bool AovSpec::has(AovType type) const {
 
 AovSpec parseAovSpec(const std::string& text, const std::string& where) {
     AovSpec spec;
-    if (trim(text).empty()) throw Error(where + ": the aovs list is empty (expected NAME:TYPE[,NAME:TYPE...])");
+    if (trim(text).empty())
+        throw Error(where + ": the aovs list is empty (expected NAME:TYPE[,NAME:TYPE...])");
     size_t start = 0;
     while (start <= text.size()) {
         const size_t end = std::min(text.find(',', start), text.size());
@@ -80,18 +90,22 @@ AovSpec parseAovSpec(const std::string& text, const std::string& where) {
         AovLayer layer;
         layer.name = trim(item.substr(0, colon));
         const std::string type = trim(item.substr(colon + 1));
-        if (layer.name.empty() || type.empty()) throw Error(where + ": aov '" + item + "' is not a NAME:TYPE pair");
+        if (layer.name.empty() || type.empty())
+            throw Error(where + ": aov '" + item + "' is not a NAME:TYPE pair");
         bool found = false;
         for (const TypeInfo& t : typeTable())
             if (type == t.name) {
                 layer.type = t.type;
                 found = true;
             }
-        if (!found) throw Error(where + ": unknown AOV type '" + type + "' (known: " + knownTypes() + ")");
+        if (!found)
+            throw Error(where + ": unknown AOV type '" + type + "' (known: " + knownTypes() + ")");
         if (layer.name == "R" || layer.name == "G" || layer.name == "B" || layer.name == "A")
-            throw Error(where + ": aov name '" + layer.name + "' is taken by the image's own channels");
+            throw Error(where + ": aov name '" + layer.name +
+                        "' is taken by the image's own channels");
         for (const AovLayer& l : spec.layers)
-            if (l.name == layer.name) throw Error(where + ": aov name '" + layer.name + "' is given twice");
+            if (l.name == layer.name)
+                throw Error(where + ": aov name '" + layer.name + "' is given twice");
         spec.layers.push_back(layer);
         if (spec.layers.size() > size_t(kMaxAovLayers))
             throw Error(where + ": more than " + std::to_string(kMaxAovLayers) + " AOVs");

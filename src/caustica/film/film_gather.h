@@ -46,7 +46,8 @@ inline GatherGrid gatherGrid(int width, int height, int samplesPerPixel, const F
     g.samplesPerPixel = samplesPerPixel;
     g.footprint = filter.footprint();
     g.filter = filter;
-    weights.resize(size_t(width) * size_t(height) * size_t(samplesPerPixel) * size_t(2 * (2 * g.footprint + 1)));
+    weights.resize(size_t(width) * size_t(height) * size_t(samplesPerPixel) *
+                   size_t(2 * (2 * g.footprint + 1)));
     invalid.resize(size_t(width) * size_t(height));
     g.weights = weights.data();
     g.invalid = invalid.data();
@@ -58,7 +59,8 @@ inline GatherGrid gatherGrid(int width, int height, int samplesPerPixel, const F
 CA_HD_INLINE bool sampleOffset(Vec2f pos, int px, int py, Float& u, Float& v) {
     u = pos.x - Float(px);
     v = pos.y - Float(py);
-    if (!(u >= -kSampleSlack && u <= 1 + kSampleSlack && v >= -kSampleSlack && v <= 1 + kSampleSlack))
+    if (!(u >= -kSampleSlack && u <= 1 + kSampleSlack && v >= -kSampleSlack &&
+          v <= 1 + kSampleSlack))
         return false;
     u = clamp(u, Float(0), kOneMinusEpsilon);
     v = clamp(v, Float(0), kOneMinusEpsilon);
@@ -97,8 +99,8 @@ CA_HD_INLINE void gatherWeights(const GatherGrid& g, const Samples& samples, siz
 /// (2f + 1)^2 K terms: float sums lose nothing that matters (the callers keep long-running
 /// totals in double).
 template <int C, class Samples>
-CA_HD_INLINE void gatherSums(const GatherGrid& g, const Samples& samples, size_t pixel, float (&sum)[C],
-                             float& wSum) {
+CA_HD_INLINE void gatherSums(const GatherGrid& g, const Samples& samples, size_t pixel,
+                             float (&sum)[C], float& wSum) {
     const int x = int(pixel % size_t(g.width)), y = int(pixel / size_t(g.width));
     const int K = g.samplesPerPixel, f = g.footprint, n = 2 * f + 1;
     for (int c = 0; c < C; ++c) sum[c] = 0;
@@ -112,7 +114,8 @@ CA_HD_INLINE void gatherSums(const GatherGrid& g, const Samples& samples, size_t
                 const float* w1 = g.weights + (base + size_t(k)) * size_t(2 * n);
                 const float w = w1[ex] * w1[ey];
                 // Select, not multiply: an invalid sample has weight 0 but may carry NaN.
-                for (int c = 0; c < C; ++c) sum[c] += w != 0 ? w * samples.value(base + size_t(k), c) : 0.0f;
+                for (int c = 0; c < C; ++c)
+                    sum[c] += w != 0 ? w * samples.value(base + size_t(k), c) : 0.0f;
                 wSum += w;
             }
         }

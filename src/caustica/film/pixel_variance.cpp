@@ -14,12 +14,14 @@ namespace caustica {
 
 namespace {
 constexpr int kMoments = 7;
-// Little-endian: char[8] "CAVARI\r\n" | u32 version | i32 width, height | f64[7 * pixels] | u64 hash.
+// Little-endian: char[8] "CAVARI\r\n" | u32 version | i32 width, height | f64[7 * pixels] | u64
+// hash.
 constexpr char kMagic[8] = {'C', 'A', 'V', 'A', 'R', 'I', '\r', '\n'};
 constexpr uint32_t kVersion = 1;
 }  // namespace
 
-PixelVariance::PixelVariance(int width, int height, Device device) : width_(width), height_(height), device_(device) {
+PixelVariance::PixelVariance(int width, int height, Device device)
+    : width_(width), height_(height), device_(device) {
     if (width <= 0 || height <= 0 || uint64_t(width) * uint64_t(height) > kMaxImagePixels)
         throw Error("variance film size is not positive or too large");
     moments_.assign(size_t(width) * size_t(height) * kMoments, 0.0);

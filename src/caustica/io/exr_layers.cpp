@@ -14,21 +14,26 @@
 
 namespace caustica {
 
-void writeExrLayers(const std::string& path, const Image& image, const AovImage& aovs, const ImageMetadata& metadata) {
+void writeExrLayers(const std::string& path, const Image& image, const AovImage& aovs,
+                    const ImageMetadata& metadata) {
     const size_t C = aovs.channels.size();
-    if (aovs.width != image.width || aovs.height != image.height || aovs.values.size() != image.pixelCount() * C)
+    if (aovs.width != image.width || aovs.height != image.height ||
+        aovs.values.size() != image.pixelCount() * C)
         throw Error(path, 0, "the AOVs' size does not match the image's");
     try {
         Imf::Header header(image.width, image.height);
         header.compression() = Imf::ZIP_COMPRESSION;
         for (const char* c : {"R", "G", "B"}) header.channels().insert(c, Imf::Channel(Imf::FLOAT));
-        for (const std::string& c : aovs.channels) header.channels().insert(c, Imf::Channel(Imf::FLOAT));
+        for (const std::string& c : aovs.channels)
+            header.channels().insert(c, Imf::Channel(Imf::FLOAT));
         header.insert(kAovsAttribute, Imf::StringAttribute(aovs.spec.text()));
         for (const auto& [key, value] : metadata.entries) {
-            // A key OpenEXR already set or reserves (type, name, view, ...) would change the file's meaning.
+            // A key OpenEXR already set or reserves (type, name, view, ...) would change the file's
+            // meaning.
             if (key.empty() || header.find(key) != header.end() || key == "type" || key == "name" ||
                 key == "view" || key == "multiView" || key == "tiles" || key == "chunkCount")
-                throw Error(path, 0, "metadata key '" + key + "' is empty or a reserved EXR attribute");
+                throw Error(path, 0,
+                            "metadata key '" + key + "' is empty or a reserved EXR attribute");
             header.insert(key, Imf::StringAttribute(value));
         }
         Imf::OutputFile file(path.c_str(), header);
@@ -40,8 +45,9 @@ void writeExrLayers(const std::string& path, const Image& image, const AovImage&
         fb.insert("B", Imf::Slice(Imf::FLOAT, rgb + 8, xs, ys));
         char* values = const_cast<char*>(reinterpret_cast<const char*>(aovs.values.data()));
         for (size_t c = 0; c < C; ++c)
-            fb.insert(aovs.channels[c], Imf::Slice(Imf::FLOAT, values + c * sizeof(float), C * sizeof(float),
-                                                   C * sizeof(float) * size_t(image.width)));
+            fb.insert(aovs.channels[c],
+                      Imf::Slice(Imf::FLOAT, values + c * sizeof(float), C * sizeof(float),
+                                 C * sizeof(float) * size_t(image.width)));
         file.setFrameBuffer(fb);
         file.writePixels(image.height);
     } catch (const Error&) {
@@ -71,9 +77,12 @@ ExrLayers readExrLayers(const std::string& path) {
         char* base = reinterpret_cast<char*>(aovs.values.data());
         for (size_t c = 0; c < C; ++c) {
             if (!file.header().channels().findChannel(aovs.channels[c]))
-                throw Error(path, 0, "no channel '" + aovs.channels[c] + "' although " + kAovsAttribute + " names it");
-            fb.insert(aovs.channels[c], Imf::Slice::Make(Imf::FLOAT, base + c * sizeof(float), dw, C * sizeof(float),
-                                                         C * sizeof(float) * size_t(aovs.width)));
+                throw Error(path, 0,
+                            "no channel '" + aovs.channels[c] + "' although " + kAovsAttribute +
+                                " names it");
+            fb.insert(aovs.channels[c],
+                      Imf::Slice::Make(Imf::FLOAT, base + c * sizeof(float), dw, C * sizeof(float),
+                                       C * sizeof(float) * size_t(aovs.width)));
         }
         file.setFrameBuffer(fb);
         file.readPixels(dw.min.y, dw.max.y);

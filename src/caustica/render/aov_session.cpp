@@ -9,31 +9,41 @@
 
 namespace caustica {
 
-AovSession::AovSession(const Scene& scene, const Accel& accel, Device device, uint64_t seed, AovSpec spec,
-                       const IntegratorSession& session, const std::string& integrator)
-    : scene_(scene), spec_(std::move(spec)), seed_(seed), pixelPasses_(session.rendersPixelPasses()),
+AovSession::AovSession(const Scene& scene, const Accel& accel, Device device, uint64_t seed,
+                       AovSpec spec, const IntegratorSession& session,
+                       const std::string& integrator)
+    : scene_(scene),
+      spec_(std::move(spec)),
+      seed_(seed),
+      pixelPasses_(session.rendersPixelPasses()),
       layout_(aovLayout(spec_)) {
     const int w = scene.film.width, h = scene.film.height;
     if (spec_.has(AovType::Variance)) {
         if (!pixelPasses_)
-            throw Error("the variance AOV needs independent pixel samples (path, direct); integrator '" +
-                        integrator + "' renders none, and caustica makes up no estimate for it");
+            throw Error(
+                "the variance AOV needs independent pixel samples (path, direct); integrator '" +
+                integrator + "' renders none, and caustica makes up no estimate for it");
         variance_.emplace(w, h);
     }
     if (layout_.channels > 0) {
-        if (!device.isCpu() && !accel.bvh()) throw Error("a GPU traces rays with caustica's own BVH, not Embree");
-        driver_ = onDevice(device, [&](auto exec) { return makeAovPass<decltype(exec)>(scene, accel, layout_); });
+        if (!device.isCpu() && !accel.bvh())
+            throw Error("a GPU traces rays with caustica's own BVH, not Embree");
+        driver_ = onDevice(
+            device, [&](auto exec) { return makeAovPass<decltype(exec)>(scene, accel, layout_); });
         film_.emplace(w, h, Filter::fromDesc(scene.film.filter), layout_.channels);
     }
 }
 
 AovSession::~AovSession() = default;
 
-uint64_t AovSession::samplesPerPixel() const { return film_ ? film_->samplesPerPixel() : 0; }
+uint64_t AovSession::samplesPerPixel() const {
+    return film_ ? film_->samplesPerPixel() : 0;
+}
 
 void AovSession::afterStep(const IntegratorSession& session, double samplesBefore) {
     const SamplePass* pass = pixelPasses_ ? session.lastPass() : nullptr;
-    if (pixelPasses_ && !pass) throw Error("internal: an integrator session that renders passes showed none");
+    if (pixelPasses_ && !pass)
+        throw Error("internal: an integrator session that renders passes showed none");
     if (variance_ && pass) variance_->addPass(*pass);
     if (!film_) return;
     int k = 1;
@@ -45,7 +55,8 @@ void AovSession::afterStep(const IntegratorSession& session, double samplesBefor
     } else if (first >= kAovSamplesPerPixelCap) {
         return;
     }
-    if (pass_.samplesPerPixel != k) pass_ = AovSamplePass(film_->width(), film_->height(), k, layout_.channels);
+    if (pass_.samplesPerPixel != k)
+        pass_ = AovSamplePass(film_->width(), film_->height(), k, layout_.channels);
     rays_ += driver_->render(seed_, first, pass_);
     film_->addPass(pass_);
 }
@@ -83,9 +94,11 @@ void AovSession::save(std::ostream& out) const {
 void AovSession::load(std::istream& in, double sessionSamplesPerPixel) {
     if (film_) film_->load(in);
     if (variance_) variance_->load(in);
-    if (film_ && pixelPasses_ && film_->samplesPerPixel() != uint64_t(std::llround(sessionSamplesPerPixel)))
-        throw Error("damaged checkpoint (its AOVs hold " + std::to_string(film_->samplesPerPixel()) +
-                    " samples per pixel, the image " + std::to_string(sessionSamplesPerPixel) + ")");
+    if (film_ && pixelPasses_ &&
+        film_->samplesPerPixel() != uint64_t(std::llround(sessionSamplesPerPixel)))
+        throw Error("damaged checkpoint (its AOVs hold " +
+                    std::to_string(film_->samplesPerPixel()) + " samples per pixel, the image " +
+                    std::to_string(sessionSamplesPerPixel) + ")");
 }
 
 }  // namespace caustica

@@ -52,8 +52,8 @@ CA_HD_INLINE uint32_t aovPrimIndex(const SceneView& view, const SurfaceInteracti
 
 /// Writes layout.channels values for camera ray `ray` and its closest hit (`hit` invalid: a
 /// miss) to out[0 .. layout.channels).
-CA_HD_INLINE void aovValues(const SceneView& view, const Ray& ray, const Hit& hit, const AovLayout& layout,
-                            float* out) {
+CA_HD_INLINE void aovValues(const SceneView& view, const Ray& ray, const Hit& hit,
+                            const AovLayout& layout, float* out) {
     if (!hit.valid()) {
         for (int c = 0; c < layout.channels; ++c) out[c] = 0;
         return;
@@ -61,11 +61,28 @@ CA_HD_INLINE void aovValues(const SceneView& view, const Ray& ray, const Hit& hi
     const SurfaceInteraction si = computeInteraction(view, ray, hit);
     for (int i = 0; i < layout.count; ++i) {
         switch (layout.types[i]) {
-            case AovType::Depth: *out++ = hit.t; break;
-            case AovType::Position: *out++ = si.p.x; *out++ = si.p.y; *out++ = si.p.z; break;
-            case AovType::Uv: *out++ = si.uv.x; *out++ = si.uv.y; break;
-            case AovType::GeoNormal: *out++ = si.ng.x; *out++ = si.ng.y; *out++ = si.ng.z; break;
-            case AovType::ShNormal: *out++ = si.ns.x; *out++ = si.ns.y; *out++ = si.ns.z; break;
+            case AovType::Depth:
+                *out++ = hit.t;
+                break;
+            case AovType::Position:
+                *out++ = si.p.x;
+                *out++ = si.p.y;
+                *out++ = si.p.z;
+                break;
+            case AovType::Uv:
+                *out++ = si.uv.x;
+                *out++ = si.uv.y;
+                break;
+            case AovType::GeoNormal:
+                *out++ = si.ng.x;
+                *out++ = si.ng.y;
+                *out++ = si.ng.z;
+                break;
+            case AovType::ShNormal:
+                *out++ = si.ns.x;
+                *out++ = si.ns.y;
+                *out++ = si.ns.z;
+                break;
             case AovType::Albedo: {
                 const Spectrum a = aovAlbedo(view, si, -ray.d);
                 *out++ = a.r;
@@ -73,9 +90,14 @@ CA_HD_INLINE void aovValues(const SceneView& view, const Ray& ray, const Hit& hi
                 *out++ = a.b;
                 break;
             }
-            case AovType::PrimIndex: *out++ = Float(aovPrimIndex(view, si)); break;
-            case AovType::ShapeIndex: *out++ = Float(si.shape + 1); break;
-            default: break;  // Variance: not in a layout
+            case AovType::PrimIndex:
+                *out++ = Float(aovPrimIndex(view, si));
+                break;
+            case AovType::ShapeIndex:
+                *out++ = Float(si.shape + 1);
+                break;
+            default:
+                break;  // Variance: not in a layout
         }
     }
 }

@@ -12,16 +12,20 @@ namespace aov_detail {
 
 /// One work item per slot = pixel * k + s (a named function template: nvcc's rule for kernels).
 template <class Exec, class Intersector>
-void traceAovPass(Exec exec, const SceneView& view, const Intersector& accel, const AovLayout& layout,
-                  uint64_t seed, uint64_t firstSample, int width, int k, size_t slots, Vec2f* positions,
-                  float* values) {
-    launch(exec, "aov.pass", slots, [=] CA_HD(size_t slot) {
-        const CameraSample c = cameraSample(view.camera, slot / size_t(k), width, firstSample + slot % size_t(k), seed);
-        Hit hit;
-        accel.intersect(c.ray, hit);
-        positions[slot] = c.pos;
-        aovValues(view, c.ray, hit, layout, values + slot * size_t(layout.channels));
-    }, 16);
+void traceAovPass(Exec exec, const SceneView& view, const Intersector& accel,
+                  const AovLayout& layout, uint64_t seed, uint64_t firstSample, int width, int k,
+                  size_t slots, Vec2f* positions, float* values) {
+    launch(
+        exec, "aov.pass", slots,
+        [=] CA_HD(size_t slot) {
+            const CameraSample c = cameraSample(view.camera, slot / size_t(k), width,
+                                                firstSample + slot % size_t(k), seed);
+            Hit hit;
+            accel.intersect(c.ray, hit);
+            positions[slot] = c.pos;
+            aovValues(view, c.ray, hit, layout, values + slot * size_t(layout.channels));
+        },
+        16);
 }
 
 }  // namespace aov_detail
@@ -47,8 +51,9 @@ public:
             values = values_.data();
         }
         scene_.visit(Exec{}, [&](const auto& intersector) {
-            aov_detail::traceAovPass(Exec{}, scene_.view(), intersector, layout_, seed, firstSampleIndex, pass.width,
-                                     pass.samplesPerPixel, slots, positions, values);
+            aov_detail::traceAovPass(Exec{}, scene_.view(), intersector, layout_, seed,
+                                     firstSampleIndex, pass.width, pass.samplesPerPixel, slots,
+                                     positions, values);
         });
         if constexpr (Exec::kind != DeviceKind::Cpu) {
             positions_.copyToHost(Span<Vec2f>(pass.positions.data(), slots));

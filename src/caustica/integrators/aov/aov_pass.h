@@ -27,6 +27,7 @@ public:
 /// The AOV pass on the device of `Exec`; scene and accel (a Bvh one for a GPU) outlive it.
 /// Defined per device by aov_pass.cpp.
 template <class Exec>
-std::unique_ptr<AovPassDriver> makeAovPass(const Scene& scene, const Accel& accel, const AovLayout& layout);
+std::unique_ptr<AovPassDriver> makeAovPass(const Scene& scene, const Accel& accel,
+                                           const AovLayout& layout);
 
 }  // namespace caustica

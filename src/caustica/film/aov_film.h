@@ -44,9 +44,10 @@ struct AovSplatView {
             if (!std::isfinite(values[i * size_t(channels) + size_t(c)])) return false;
         return true;
     }
-    CA_HD float value(size_t i, int c) const {
-        const int ch = firstChannel + c;
-        return ch < channels ? values[i * size_t(channels) + size_t(ch)] : 0.0f;
+    CA_HD void sampleValues(size_t i, float (&v)[kAovGatherChannels]) const {
+        const float* in = values + i * size_t(channels);
+        for (int c = 0; c < kAovGatherChannels; ++c)
+            v[c] = firstChannel + c < channels ? in[firstChannel + c] : 0.0f;
     }
 };
 

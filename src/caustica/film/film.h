@@ -74,7 +74,12 @@ struct FilmSplatView {
         pos = samples[i].pos;
         return isValidSample(samples[i]);
     }
-    CA_HD float value(size_t i, int c) const { return samples[i].L[c]; }
+    CA_HD void sampleValues(size_t i, float (&v)[3]) const {
+        const Spectrum& L = samples[i].L;
+        v[0] = L.r;
+        v[1] = L.g;
+        v[2] = L.b;
+    }
 };
 
 /// Kernel 1 for one source pixel: validates its K samples and stores their 1-D weights.

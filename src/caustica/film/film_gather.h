@@ -95,16 +95,18 @@ CA_HD_INLINE void gatherWeights(const GatherGrid& g, const Samples& samples, siz
 }
 
 /// Kernel 2 for one output pixel: sum[c] = Σ w v_c for the C channels (Samples:
-/// `CA_HD float value(size_t sample, int c) const`), wSum = Σ w. One pass adds at most
-/// (2f + 1)^2 K terms: float sums lose nothing that matters (the callers keep long-running
+/// `CA_HD void sampleValues(size_t sample, float (&v)[C]) const`), wSum = Σ w. One pass adds at
+/// most (2f + 1)^2 K terms: float sums lose nothing that matters (the callers keep long-running
 /// totals in double).
 template <int C, class Samples>
 CA_HD_INLINE void gatherSums(const GatherGrid& g, const Samples& samples, size_t pixel,
                              float (&sum)[C], float& wSum) {
     const int x = int(pixel % size_t(g.width)), y = int(pixel / size_t(g.width));
     const int K = g.samplesPerPixel, f = g.footprint, n = 2 * f + 1;
-    for (int c = 0; c < C; ++c) sum[c] = 0;
-    wSum = 0;
+    // Local sums (registers): the output may alias the float weights as far as the compiler knows.
+    float acc[C];
+    for (int c = 0; c < C; ++c) acc[c] = 0;
+    float ws = 0;
     for (int sy = max(0, y - f); sy <= min(g.height - 1, y + f); ++sy) {
         const int ey = n + (y - sy + f);
         for (int sx = max(0, x - f); sx <= min(g.width - 1, x + f); ++sx) {
@@ -113,13 +115,19 @@ CA_HD_INLINE void gatherSums(const GatherGrid& g, const Samples& samples, size_t
             for (int k = 0; k < K; ++k) {
                 const float* w1 = g.weights + (base + size_t(k)) * size_t(2 * n);
                 const float w = w1[ex] * w1[ey];
-                // Select, not multiply: an invalid sample has weight 0 but may carry NaN.
-                for (int c = 0; c < C; ++c)
-                    sum[c] += w != 0 ? w * samples.value(base + size_t(k), c) : 0.0f;
-                wSum += w;
+                // Skip, not multiply: an invalid sample has weight 0 but may carry NaN (adding
+                // the +0 a zero weight gives would change no sum).
+                if (w != 0) {
+                    float v[C];
+                    samples.sampleValues(base + size_t(k), v);
+                    for (int c = 0; c < C; ++c) acc[c] += w * v[c];
+                }
+                ws += w;
             }
         }
     }
+    for (int c = 0; c < C; ++c) sum[c] = acc[c];
+    wSum = ws;
 }
 
 }  // namespace caustica

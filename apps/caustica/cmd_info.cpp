@@ -42,6 +42,7 @@ void printScene(const Scene& scene) {
     IntegratorParams params = integratorParams(scene.integrator, integrator.name, {});
     std::printf("integrator   %s (%s)\n", integrator.name, integrator.describe(params).c_str());
     for (const std::string& w : params.unread()) std::printf("warning      %s\n", w.c_str());
+    if (!scene.integrator.aovs.empty()) std::printf("aovs         %s\n", scene.integrator.aovs.c_str());
     Vec3f eye = scene.camera.worldFromCamera.applyPoint(Vec3f(0, 0, 0));
     std::printf("camera       at (%g, %g, %g), horizontal fov %.4g deg\n", eye.x, eye.y, eye.z,
                 2 * degrees(std::atan(scene.camera.tanHalfX)));

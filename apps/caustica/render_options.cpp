@@ -47,6 +47,9 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
                    "CUDA backend and a GPU is present, else the CPU)")->check(CLI::IsMember({"cpu", "cuda", "auto"}));
     cmd.add_option("--gpu-mode", r.gpuMode, "Path tracer execution on the GPU: megakernel or wavefront")
         ->check(CLI::IsMember({"megakernel", "wavefront"}));
+    cmd.add_option("--aov", r.aovs, "AOVs written as layers of the .exr output, Mitsuba's aovs list NAME:TYPE,... "
+                   "(types: depth, position, uv, geo_normal, sh_normal, albedo, prim_index, shape_index, "
+                   "variance; replaces the scene's aov integrator's list; docs/AOV.md)");
     cmd.add_flag("--kernel-stats", o.kernelStats, "Time every named kernel launch and print the table at the end");
     cmd.add_option("--stats-json", c.statsJson, "Write the final statistics as JSON to this file");
     cmd.add_option("--spp-per-pass", r.samplesPerPass, "Samples per pixel in one pass (progress and checkpoint "

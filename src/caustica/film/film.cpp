@@ -62,16 +62,9 @@ void Film::addPass(const SamplePass& pass) {
     if (pass.samplesPerPixel == 0) return;
 
     FilmSplatView view;
-    view.width = width_;
-    view.height = height_;
-    view.samplesPerPixel = pass.samplesPerPixel;
-    view.footprint = filter_.footprint();
-    view.filter = filter_;
+    view.grid = gatherGrid(width_, height_, pass.samplesPerPixel, filter_, weightScratch_, invalidScratch_);
     view.samples = pass.samples.data();
-    weightScratch_.resize(pass.samples.size() * size_t(2 * (2 * view.footprint + 1)));
-    view.weights = weightScratch_.data();
     view.sums = sums_.data();
-    view.invalid = invalidScratch_.data();
     parallelFor(device_, "film_sample_weights", sums_.size(),
                 [view](size_t pixel) { sampleWeights(view, pixel); });
     parallelFor(device_, "film_gather", sums_.size(),

@@ -13,6 +13,7 @@
 #include <iosfwd>
 #include <vector>
 
+#include "caustica/film/film_gather.h"
 #include "caustica/film/filter.h"
 #include "caustica/film/image.h"
 #include "caustica/parallel/device.h"
@@ -53,31 +54,9 @@ struct SamplePass {
     }
 };
 
-/// How far (pixels) a sample may stray outside its own pixel before it counts as invalid.
-inline constexpr Float kSampleSlack = 1.0f / 64.0f;
-
 /// Accumulated sums of one output pixel: sum(w L) per channel and sum(w).
 struct FilmPixel {
     double r = 0, g = 0, b = 0, w = 0;
-};
-
-/// What the two splatting kernels see: plain pointers, valid on the device that runs them.
-///
-/// Kernel 1 (sampleWeights, one work item per source pixel) validates each sample and stores
-/// its 1-D filter weights towards the 2f+1 output columns and rows it can reach (f = footprint):
-///   weights[s * 2n + e]     = w(dx) for output column x = sx + e - f   (n = 2f + 1)
-///   weights[s * 2n + n + e] = w(dy) for output row    y = sy + e - f
-/// (all 0 for an invalid sample). Each exp() of the gaussian is thus evaluated once per sample
-/// and axis instead of once per sample and output pixel.
-/// Kernel 2 (gatherPixel, one work item per output pixel) multiplies and accumulates.
-struct FilmSplatView {
-    int width = 0, height = 0, samplesPerPixel = 0;
-    int footprint = 0;  // f: source pixels visited on each side of the output pixel
-    Filter filter;
-    const PixelSample* samples = nullptr;
-    float* weights = nullptr;     // 2 (2f + 1) per sample
-    FilmPixel* sums = nullptr;    // per output pixel
-    uint32_t* invalid = nullptr;  // per source pixel: its invalid samples
 };
 
 /// True when a sample may be splatted: finite, non-negative radiance and a finite position.
@@ -85,73 +64,35 @@ CA_HD_INLINE bool isValidSample(const PixelSample& s) {
     return s.L.isValid() && std::isfinite(s.pos.x) && std::isfinite(s.pos.y);
 }
 
-/// Offset of a sample inside its pixel (in [0, 1) per axis), or false when it lies farther than
-/// kSampleSlack outside the pixel's square.
-CA_HD_INLINE bool sampleOffset(const PixelSample& s, int px, int py, Float& u, Float& v) {
-    u = s.pos.x - Float(px);
-    v = s.pos.y - Float(py);
-    if (!(u >= -kSampleSlack && u <= 1 + kSampleSlack && v >= -kSampleSlack &&
-          v <= 1 + kSampleSlack))
-        return false;
-    u = clamp(u, Float(0), kOneMinusEpsilon);
-    v = clamp(v, Float(0), kOneMinusEpsilon);
-    return true;
-}
+/// What the two splatting kernels (film_gather.h) see of an RGB pass.
+struct FilmSplatView {
+    GatherGrid grid;
+    const PixelSample* samples = nullptr;
+    FilmPixel* sums = nullptr;  // per output pixel
+
+    CA_HD bool position(size_t i, Vec2f& pos) const {
+        pos = samples[i].pos;
+        return isValidSample(samples[i]);
+    }
+    CA_HD void sampleValues(size_t i, float (&v)[3]) const {
+        const Spectrum& L = samples[i].L;
+        v[0] = L.r;
+        v[1] = L.g;
+        v[2] = L.b;
+    }
+};
 
 /// Kernel 1 for one source pixel: validates its K samples and stores their 1-D weights.
-CA_HD_INLINE void sampleWeights(const FilmSplatView& view, size_t pixel) {
-    const int px = int(pixel % size_t(view.width)), py = int(pixel / size_t(view.width));
-    const int f = view.footprint, n = 2 * f + 1;
-    uint32_t invalid = 0;
-    for (int k = 0; k < view.samplesPerPixel; ++k) {
-        const size_t sample = pixel * size_t(view.samplesPerPixel) + size_t(k);
-        float* w = view.weights + sample * size_t(2 * n);
-        Float u, v;
-        if (!isValidSample(view.samples[sample]) ||
-            !sampleOffset(view.samples[sample], px, py, u, v)) {
-            ++invalid;
-            for (int e = 0; e < 2 * n; ++e) w[e] = 0;
-            continue;
-        }
-        // Offset from the centre of output pixel px + e - f: integer part exact, fraction in
-        // [-0.5, 0.5).
-        for (int e = 0; e < n; ++e) {
-            w[e] = view.filter.eval(Float(f - e) + (u - 0.5f));
-            w[n + e] = view.filter.eval(Float(f - e) + (v - 0.5f));
-        }
-    }
-    view.invalid[pixel] = invalid;
-}
+CA_HD_INLINE void sampleWeights(const FilmSplatView& view, size_t pixel) { gatherWeights(view.grid, view, pixel); }
 
-/// Kernel 2 for one output pixel: visits source rows y - f .. y + f, columns x - f .. x + f,
-/// samples k = 0 .. K-1, in that fixed order, and adds sum(w L) and sum(w) to its sums.
+/// Kernel 2 for one output pixel: adds sum(w L) and sum(w) of the pass to its sums.
 CA_HD_INLINE void gatherPixel(const FilmSplatView& view, size_t pixel) {
-    const int x = int(pixel % size_t(view.width)), y = int(pixel / size_t(view.width));
-    const int K = view.samplesPerPixel, f = view.footprint, n = 2 * f + 1;
-    // One pass adds at most (2f + 1)^2 K terms: float sums lose nothing that matters, and the
-    // long-running per-pixel totals stay double.
-    float r = 0, g = 0, b = 0, wSum = 0;
-    for (int sy = max(0, y - f); sy <= min(view.height - 1, y + f); ++sy) {
-        const int ey = n + (y - sy + f);
-        for (int sx = max(0, x - f); sx <= min(view.width - 1, x + f); ++sx) {
-            const int ex = x - sx + f;
-            const size_t base = (size_t(sy) * size_t(view.width) + size_t(sx)) * size_t(K);
-            for (int k = 0; k < K; ++k) {
-                const float* w1 = view.weights + (base + size_t(k)) * size_t(2 * n);
-                const float w = w1[ex] * w1[ey];
-                const Spectrum& L = view.samples[base + size_t(k)].L;
-                // Select, not multiply: an invalid sample has weight 0 but may carry NaN.
-                r += w != 0 ? w * L.r : 0.0f;
-                g += w != 0 ? w * L.g : 0.0f;
-                b += w != 0 ? w * L.b : 0.0f;
-                wSum += w;
-            }
-        }
-    }
+    float sum[3], wSum;
+    gatherSums<3>(view.grid, view, pixel, sum, wSum);
     FilmPixel& acc = view.sums[pixel];
-    acc.r += r;
-    acc.g += g;
-    acc.b += b;
+    acc.r += sum[0];
+    acc.g += sum[1];
+    acc.b += sum[2];
     acc.w += wSum;
 }
 

@@ -16,6 +16,8 @@
 
 namespace caustica {
 
+struct SamplePass;
+
 /// Counters of the current run (not of earlier runs of a resumed render).
 struct SessionCounters {
     uint64_t samples = 0;         // camera samples (proposals for mlt)
@@ -49,6 +51,11 @@ public:
     /// Further summary lines and statistics JSON entries (key, JSON value) of the integrator.
     virtual void printSummary(std::FILE* out) const { (void)out; }
     virtual std::vector<std::pair<std::string, std::string>> statsJson() const { return {}; }
+    /// Whether step() renders a pass of independent pixel samples (path, direct), which
+    /// lastPass() then shows: the AOVs (aov_session.h) take exactly its camera samples, and the
+    /// variance AOV its radiance.
+    virtual bool rendersPixelPasses() const { return false; }
+    virtual const SamplePass* lastPass() const { return nullptr; }
 };
 
 }  // namespace caustica

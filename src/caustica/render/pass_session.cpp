@@ -69,6 +69,8 @@ public:
     void save(std::ostream& out) const override { film_.save(out); }
     void load(std::istream& in) override { film_.load(in); }
     std::string description() const override { return description_; }
+    bool rendersPixelPasses() const override { return true; }
+    const SamplePass* lastPass() const override { return &pass_; }
     void printSummary(std::FILE* out) const override {
         if (gpu_) std::fprintf(out, "GPU memory  peak %s allocated\n", formatBytes(gpuPeakBytes()).c_str());
     }

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "caustica/film/tonemap.h"
+#include "caustica/io/exr_layers.h"
 #include "caustica/io/image_io.h"
 #include "caustica/render/renderer.h"
 #include "caustica/util/atomic_file.h"
@@ -62,6 +63,7 @@ void writeRenderImages(const std::vector<std::string>& paths, const Image& image
     meta.entries["caustica.invalidSamples"] = std::to_string(stats.invalidSamples);
     const ToneMapDesc& tonemap = r.scene().film.tonemap;
     Image ldr;  // tone-mapped once, for every PNG output of an ldrfilm
+    AovImage aovs;  // developed once, for every EXR output of a render with AOVs
     for (const std::string& p : paths) {
         // Written beside the target and renamed, so a killed render never leaves a torn image.
         const std::string ext = fs::path(p).extension().string();
@@ -69,7 +71,13 @@ void writeRenderImages(const std::vector<std::string>& paths, const Image& image
         const bool toneMapped = tonemap.ldr && (ext == ".png" || ext == ".PNG");
         if (toneMapped && ldr.empty()) ldr = displayToPngLinear(toneMap(image, tonemap));
         try {
-            writeImage(tmp, toneMapped ? ldr : image, meta);
+            // EXR: the AOVs as layers of the same file (io/exr_layers.h); PNG, PFM: the image only.
+            if (r.hasAovs() && (ext == ".exr" || ext == ".EXR")) {
+                if (aovs.empty()) aovs = r.developAovs();
+                writeExrLayers(tmp, image, aovs, meta);
+            } else {
+                writeImage(tmp, toneMapped ? ldr : image, meta);
+            }
         } catch (const Error& e) {
             std::error_code ignored;
             fs::remove(tmp, ignored);

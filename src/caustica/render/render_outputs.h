@@ -24,7 +24,7 @@ void checkWritablePath(const std::string& path, const char* what);
 std::string defaultOutputPath(const std::string& scenePath, const FilmDesc& film);
 /// Writes `image` to every path (.exr, .pfm: linear radiance with the render's metadata; .png:
 /// 8-bit sRGB, or tone-mapped when the scene's film is an ldrfilm), each through a temporary file
-/// and a rename.
+/// and a rename. A render with AOVs writes them as layers of every .exr (io/exr_layers.h).
 void writeRenderImages(const std::vector<std::string>& paths, const Image& image, const Renderer& renderer);
 void printRenderSummary(const Renderer& renderer, std::FILE* out);
 /// The statistics as JSON (the integrator's own entries included), written atomically.

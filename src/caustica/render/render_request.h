@@ -31,6 +31,9 @@ struct RenderRequest {
     /// The integrator's parameters set on the command line (integrator_registry.h lists each
     /// integrator's options); they take the place of the scene's of the same name.
     std::vector<IntegratorParam> integratorParams;
+    /// AOVs asked for on the command line (--aov "dd.y:depth,nn:sh_normal"); they replace the
+    /// scene's aov integrator's list. "" = the scene's (if any).
+    std::string aovs;
 };
 
 }  // namespace caustica

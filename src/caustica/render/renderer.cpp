@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "caustica/parallel/device_select.h"
+#include "caustica/render/aov_session.h"
 #include "caustica/render/integrator_registry.h"
 #include "caustica/util/atomic_file.h"
 #include "caustica/util/error.h"
@@ -95,6 +96,15 @@ Renderer::Renderer(Scene scene, const RenderRequest& request, const CheckpointHe
         if (const uint64_t limit = session_->passLimit(); limit > 0) targetSpp_ = double(limit);
     for (std::string& w : params.unread()) warnings_.push_back(std::move(w));
     for (IdentityEntry& e : session_->parameters()) identity_.push_back(std::move(e));
+    // AOVs: the command line's list, else the scene's aov integrator's. Part of the identity, so
+    // a resume never drops or restarts them.
+    const bool aovsFromRequest = !request.aovs.empty();
+    if (aovsFromRequest || !s.integrator.aovs.empty()) {
+        const AovSpec spec = aovsFromRequest ? parseAovSpec(request.aovs, "--aov")
+                                             : parseAovSpec(s.integrator.aovs, s.integrator.aovsWhere);
+        aov_ = std::make_unique<AovSession>(s, *accel_, device_, seed_, spec, *session_, integrator_);
+        identity_.push_back(identityEntry("aovs", spec.text()));
+    }
 }
 
 Renderer::~Renderer() = default;
@@ -123,7 +133,9 @@ bool Renderer::finished() const {
 
 void Renderer::step() {
     const auto start = Clock::now();
-    session_->step(targetSpp_ > 0 ? targetSpp_ - session_->samplesPerPixel() : 0);
+    const double samplesBefore = session_->samplesPerPixel();
+    session_->step(targetSpp_ > 0 ? targetSpp_ - samplesBefore : 0);
+    if (aov_) aov_->afterStep(*session_, samplesBefore);
     lastStepSeconds_ = secondsSince(start);
     runSeconds_ += lastStepSeconds_;
 }
@@ -134,12 +146,14 @@ RenderProgress Renderer::progress() const {
 
 Image Renderer::develop() const { return session_->develop(); }
 
+AovImage Renderer::developAovs() const { return aov_ ? aov_->develop() : AovImage{}; }
+
 RenderStats Renderer::stats() const {
     const SessionCounters c = session_->counters();
     RenderStats s;
     s.seconds = priorSeconds_ + runSeconds_;
     s.samples = c.samples;
-    s.rays = c.rays;
+    s.rays = c.rays + (aov_ ? aov_->rays() : 0);
     s.samplesPerPixel = int(std::lround(session_->samplesPerPixel()));
     s.invalidSamples = c.invalidSamples;
     return s;
@@ -150,6 +164,7 @@ void Renderer::save(const std::string& path) const {
     writeFileAtomically(path, [&](std::ostream& out) {
         writeCheckpointHeader(out, header);
         session_->save(out);
+        if (aov_) aov_->save(out);
     });
 }
 
@@ -171,6 +186,7 @@ void Renderer::load(const std::string& path) {
     try {
         readCheckpointHeader(in);  // past the header, to the payload
         session_->load(in);
+        if (aov_) aov_->load(in, session_->samplesPerPixel());
     } catch (const Error& e) {
         throw Error(path + ": " + e.what());
     }

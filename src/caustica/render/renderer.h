@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "caustica/accel/accel.h"
+#include "caustica/film/aov_layers.h"
 #include "caustica/film/image.h"
 #include "caustica/parallel/device.h"
 #include "caustica/render/checkpoint_envelope.h"
@@ -23,6 +24,8 @@
 #include "caustica/scene/scene.h"
 
 namespace caustica {
+
+class AovSession;
 
 /// Sets the film (and camera) to width x height pixels with the horizontal field of view kept,
 /// dropping any crop window; throws caustica::Error for sizes outside 1..32768 per side or more
@@ -81,6 +84,10 @@ public:
     RenderStats stats() const;
     double runSeconds() const { return runSeconds_; }
     const IntegratorSession& session() const { return *session_; }
+    /// Whether the render has AOVs (the scene's aov integrator or the request's), and their
+    /// developed channels (aov_session.h).
+    bool hasAovs() const { return aov_ != nullptr; }
+    AovImage developAovs() const;
 
     /// Writes the whole state to `path` atomically (a temporary file, then a rename).
     void save(const std::string& path) const;
@@ -92,6 +99,7 @@ private:
     std::unique_ptr<Scene> scene_;
     std::unique_ptr<Accel> accel_;
     std::unique_ptr<IntegratorSession> session_;
+    std::unique_ptr<AovSession> aov_;
     std::string integrator_;
     uint64_t seed_ = 0;
     Device device_;

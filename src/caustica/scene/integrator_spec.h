@@ -22,6 +22,9 @@ struct IntegratorSpec {
     std::string type = "path";  // the integrator that runs (io maps other Mitsuba types to it)
     std::string where;          // "scene.xml:12" of the <integrator>; "" without one
     std::vector<IntegratorParam> params;
+    /// Mitsuba's aov integrator around this one: its `aovs` list as written ("dd.y:depth,
+    /// nn:sh_normal"; film/aov_layers.h) and where ("scene.xml:3"); "" without one.
+    std::string aovs, aovsWhere;
 };
 
 }  // namespace caustica

@@ -1,0 +1,295 @@
+// aov_render_test.cpp — AOVs of a render (render/aov_session.h) for every integrator: values
+// against known geometry (a plane seen by an orthographic camera), Mitsuba's aov integrator in a
+// scene and --aov, the variance against a hand-computed sample variance, thread-count
+// independence, checkpoints, the layered EXR output, and the refusals.
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <cmath>
+
+#include "caustica/film/film.h"
+#include "caustica/io/exr_layers.h"
+#include "caustica/io/scene_loader.h"
+#include "caustica/render/render_outputs.h"
+#include "caustica/render/renderer.h"
+#include "io/scene_test_util.h"
+
+namespace caustica::test {
+namespace {
+
+constexpr const char* kAllGeometric =
+    "dd.y:depth,nn:sh_normal,ng:geo_normal,p:position,uv:uv,alb:albedo,pi:prim_index,si:shape_"
+    "index";
+
+/// An orthographic camera at z = 5 looking down at the rectangle [-2, 2]² in z = 0 (it sees
+/// [-1, 1]²: film x -> world x, film y -> world -y), 16 x 16 pixels, box filter; a sphere light
+/// outside the view. `shift` moves the rectangle out of the view.
+std::string planeScene(const std::string& integrator, float shift = 0) {
+    return R"(<scene version="3.0.0">
+)" + integrator +
+           R"(
+    <sensor type="orthographic">
+        <transform name="to_world"><lookat origin="0, 0, 5" target="0, 0, 0" up="0, 1, 0"/></transform>
+        <film type="hdrfilm"><integer name="width" value="16"/><integer name="height" value="16"/>
+            <rfilter type="box"/></film>
+        <sampler type="independent"><integer name="sample_count" value="4"/></sampler>
+    </sensor>
+    <shape type="rectangle">
+        <transform name="to_world"><scale value="2"/><translate x=")" +
+           std::to_string(shift) + R"("/></transform>
+        <bsdf type="diffuse"><rgb name="reflectance" value="0.3, 0.5, 0.7"/></bsdf>
+    </shape>
+    <shape type="sphere"><float name="radius" value="0.3"/><point name="center" x="3" y="0" z="1"/>
+        <emitter type="area"><rgb name="radiance" value="4"/></emitter></shape>
+</scene>
+)";
+}
+
+const std::string kPath =
+    R"(<integrator type="path"><integer name="max_depth" value="3"/></integrator>)";
+
+RenderRequest request(const std::string& aovs, const std::string& integrator = "") {
+    RenderRequest r;
+    r.device = "cpu";
+    r.seed = 3;
+    r.samplesPerPixel = 4;
+    r.samplesPerPass = 2;
+    r.aovs = aovs;
+    r.integrator = integrator;
+    if (integrator == "mlt")
+        r.integratorParams = {
+            {"chains", IntegratorParam::Kind::Text, "16", "--mlt-chains"},
+            {"luminance_samples", IntegratorParam::Kind::Text, "256", "--mlt-bootstrap"},
+            {"splat", IntegratorParam::Kind::Text, "sort", "--splat"}};
+    if (integrator == "sppm")
+        r.integratorParams = {
+            {"photon_count", IntegratorParam::Kind::Text, "2048", "--sppm-photons"},
+            {"initial_radius", IntegratorParam::Kind::Text, "0", "--sppm-radius"}};
+    return r;
+}
+
+std::unique_ptr<Renderer> makeRenderer(const TempDir& dir, const std::string& xml,
+                                       const RenderRequest& r) {
+    std::vector<std::string> warnings;
+    return std::make_unique<Renderer>(loadScene(dir.write("scene.xml", xml), {}, &warnings), r);
+}
+
+AovImage renderAovs(const TempDir& dir, const std::string& xml, const RenderRequest& r) {
+    auto renderer = makeRenderer(dir, xml, r);
+    while (!renderer->finished()) renderer->step();
+    return renderer->developAovs();
+}
+
+TEST(AovRender, PlaneValuesMatchTheGeometry) {
+    TempDir dir;
+    const AovImage a = renderAovs(dir, planeScene(kPath), request(kAllGeometric));
+    ASSERT_EQ(a.channels.size(), 17u);
+    EXPECT_EQ(a.channels[0], "dd.y.T");
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x) {
+            SCOPED_TRACE(testing::Message() << "pixel " << x << "," << y);
+            // Depth: from the camera's near plane (Mitsuba's near_clip 0.01) to z = 0.
+            EXPECT_NEAR(a.at(x, y, 0), 4.99f, 1e-5f);
+            for (int c : {1, 4}) {  // sh_normal, geo_normal: +z
+                EXPECT_EQ(a.at(x, y, size_t(c)), 0.0f);
+                EXPECT_EQ(a.at(x, y, size_t(c + 1)), 0.0f);
+                EXPECT_EQ(a.at(x, y, size_t(c + 2)), 1.0f);
+            }
+            // Position: the pixel's mean sample, within half a pixel (1/16) of its centre.
+            const float px = a.at(x, y, 7), py = a.at(x, y, 8);
+            EXPECT_NEAR(px, -1 + (x + 0.5f) / 8, 1.0f / 16);
+            EXPECT_NEAR(py, 1 - (y + 0.5f) / 8, 1.0f / 16);
+            EXPECT_EQ(a.at(x, y, 9), 0.0f);
+            // uv of Mitsuba's rectangle: (local + 1) / 2, local = world / 2, linear: exact means.
+            EXPECT_NEAR(a.at(x, y, 10), px / 4 + 0.5f, 1e-5f);
+            EXPECT_NEAR(a.at(x, y, 11), py / 4 + 0.5f, 1e-5f);
+            EXPECT_FLOAT_EQ(a.at(x, y, 12), 0.3f);  // albedo: the diffuse reflectance
+            EXPECT_FLOAT_EQ(a.at(x, y, 13), 0.5f);
+            EXPECT_FLOAT_EQ(a.at(x, y, 14), 0.7f);
+            // prim_index: triangle 0 (x > y) or 1, away from the diagonal; shape_index: 1 + shape
+            // 0.
+            const float cx = -1 + (x + 0.5f) / 8, cy = 1 - (y + 0.5f) / 8;
+            if (std::abs(cx - cy) > 0.3f) {
+                EXPECT_EQ(a.at(x, y, 15), cx > cy ? 0.0f : 1.0f);
+            }
+            EXPECT_EQ(a.at(x, y, 16), 1.0f);
+        }
+}
+
+TEST(AovRender, EveryChannelIsZeroWhereTheCameraRayMisses) {
+    TempDir dir;
+    const AovImage a = renderAovs(dir, planeScene(kPath, 20), request(kAllGeometric));
+    for (float v : a.values) EXPECT_EQ(v, 0.0f);
+}
+
+// Depth is integrator-independent here (a plane of constant depth): every integrator fills it.
+// path and direct trace the same camera samples, so all their AOVs agree bit for bit.
+TEST(AovRender, EveryIntegratorFillsTheAovs) {
+    TempDir dir;
+    const AovImage path = renderAovs(dir, planeScene(kPath), request(kAllGeometric, "path"));
+    for (const char* integrator : {"direct", "mlt", "sppm"}) {
+        SCOPED_TRACE(integrator);
+        const AovImage a = renderAovs(dir, planeScene(kPath), request(kAllGeometric, integrator));
+        ASSERT_EQ(a.values.size(), path.values.size());
+        for (int y = 0; y < 16; ++y)
+            for (int x = 0; x < 16; ++x) {
+                EXPECT_NEAR(a.at(x, y, 0), 4.99f, 1e-5f);
+                EXPECT_EQ(a.at(x, y, 16), 1.0f);
+            }
+        if (std::string(integrator) == "direct") EXPECT_TRUE(a.values == path.values);
+    }
+}
+
+// The variance AOV is s² / n of each pixel's own samples: recomputed here from the passes.
+TEST(AovRender, VarianceIsTheSampleVarianceOfThePixelMean) {
+    TempDir dir;
+    auto r = makeRenderer(dir, planeScene(kPath), request("v:variance,d:depth"));
+    std::vector<PixelSample> samples;  // every pass's, pixel-major within a pass
+    while (!r->finished()) {
+        r->step();
+        const SamplePass* pass = r->session().lastPass();
+        ASSERT_NE(pass, nullptr);
+        samples.insert(samples.end(), pass->samples.begin(), pass->samples.end());
+    }
+    const AovImage a = r->developAovs();
+    ASSERT_EQ(a.channels[0], "v.R");
+    const int passes = 2, k = 2;
+    ASSERT_EQ(samples.size(), size_t(256 * passes * k));
+    int nonZero = 0;
+    for (int pixel = 0; pixel < 256; ++pixel)
+        for (int c = 0; c < 3; ++c) {
+            double sum = 0, sumSq = 0;
+            for (int p = 0; p < passes; ++p)
+                for (int s = 0; s < k; ++s) {
+                    const double v = samples[size_t(p * 256 * k + pixel * k + s)].L[c];
+                    sum += v;
+                    sumSq += v * v;
+                }
+            const double n = passes * k, mean = sum / n;
+            double ss = 0;  // two-pass form, for an independent check
+            for (int p = 0; p < passes; ++p)
+                for (int s = 0; s < k; ++s) {
+                    const double d = samples[size_t(p * 256 * k + pixel * k + s)].L[c] - mean;
+                    ss += d * d;
+                }
+            const double expected = ss / (n - 1) / n;
+            const float got = a.at(pixel % 16, pixel / 16, size_t(c));
+            EXPECT_NEAR(got, expected, 1e-5 * std::max(1.0, expected))
+                << "pixel " << pixel << " channel " << c;
+            nonZero += got > 0;
+        }
+    EXPECT_GT(nonZero, 100);                   // the plane is noisy: the test sees real variances
+    EXPECT_NEAR(a.at(3, 3, 3), 4.99f, 1e-5f);  // depth after the variance
+}
+
+TEST(AovRender, VarianceIsRefusedForIntegratorsWithoutPixelSamples) {
+    TempDir dir;
+    for (const char* integrator : {"mlt", "sppm"}) {
+        try {
+            makeRenderer(dir, planeScene(kPath), request("v:variance", integrator));
+            ADD_FAILURE() << integrator << " accepted the variance AOV";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("variance AOV needs independent pixel samples"),
+                      std::string::npos)
+                << e.what();
+        }
+    }
+}
+
+TEST(AovRender, SameAovsForOneAndTwoThreads) {
+    TempDir dir;
+    auto aovs = [&](int threads) {
+        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
+        return renderAovs(dir, planeScene(kPath),
+                          request(std::string(kAllGeometric) + ",v:variance"));
+    };
+    EXPECT_TRUE(aovs(1).values == aovs(2).values);
+}
+
+TEST(AovRender, ResumeKeepsTheAovsAndRefusesOtherOnes) {
+    TempDir dir;
+    const std::string aovs = "d:depth,p:position,v:variance";
+    for (const char* integrator : {"path", "sppm"}) {
+        SCOPED_TRACE(integrator);
+        const std::string list = std::string(integrator) == "path" ? aovs : "d:depth,p:position";
+        const AovImage whole = renderAovs(dir, planeScene(kPath), request(list, integrator));
+        auto first = makeRenderer(dir, planeScene(kPath), request(list, integrator));
+        first->step();
+        const std::string ckpt = dir.path("r.ckpt");
+        first->save(ckpt);
+        auto resumed = makeRenderer(dir, planeScene(kPath), request(list, integrator));
+        resumed->load(ckpt);
+        while (!resumed->finished()) resumed->step();
+        EXPECT_TRUE(resumed->developAovs().values == whole.values);
+        // Other AOVs, or none, do not resume this checkpoint.
+        auto other = makeRenderer(dir, planeScene(kPath), request("d:depth", integrator));
+        EXPECT_THROW(other->load(ckpt), Error);
+        auto none = makeRenderer(dir, planeScene(kPath), request("", integrator));
+        EXPECT_THROW(none->load(ckpt), Error);
+    }
+}
+
+TEST(AovRender, ExrOutputHoldsTheLayersAndPngTheImage) {
+    TempDir dir;
+    auto r = makeRenderer(dir, planeScene(kPath), request("dd.y:depth,nn:sh_normal,v:variance"));
+    while (!r->finished()) r->step();
+    const Image image = r->develop();
+    writeRenderImages({dir.path("out.exr"), dir.path("out.png")}, image, *r);
+    const ExrLayers read = readExrLayers(dir.path("out.exr"));
+    EXPECT_TRUE(read.image.rgb == image.rgb);
+    EXPECT_EQ(read.metadata.entries.at("caustica.aovs"), "dd.y:depth,nn:sh_normal,v:variance");
+    const AovImage aovs = r->developAovs();
+    EXPECT_EQ(read.aovs.channels, aovs.channels);
+    EXPECT_TRUE(read.aovs.values == aovs.values);
+    EXPECT_TRUE(readExrLayers(dir.path("out.png")).aovs.empty());
+}
+
+// Mitsuba's aov integrator: the nested integrator renders, the list travels with it.
+TEST(AovScene, MitsubaAovIntegratorKeepsItsNestedIntegrator) {
+    TempDir dir;
+    std::vector<std::string> warnings;
+    const Scene scene =
+        loadXml(dir,
+                sceneXml("<integrator type=\"aov\">\n"
+                         "<string name=\"aovs\" value=\"dd.y:depth,nn:sh_normal\"/>\n"
+                         "<integrator type=\"direct\" name=\"my_image\">\n"
+                         "<integer name=\"emitter_samples\" value=\"2\"/></integrator>\n"
+                         "<integrator type=\"path\" name=\"second\"/>\n"
+                         "</integrator>"),
+                &warnings);
+    EXPECT_EQ(scene.integrator.type, "direct");
+    EXPECT_EQ(integratorParam(scene, "emitter_samples"), "2");
+    EXPECT_EQ(scene.integrator.aovs, "dd.y:depth,nn:sh_normal");
+    EXPECT_NE(scene.integrator.aovsWhere.find("scene.xml:4"), std::string::npos);
+    EXPECT_TRUE(hasWarning(warnings, {"scene.xml:7:", "'path' is not used"}));
+    // The scene's list makes the render's AOVs.
+    auto r = std::make_unique<Renderer>(loadXml(dir, planeScene(R"(<integrator type="aov">
+        <string name="aovs" value="dd.y:depth"/><integrator type="path" name="my_image"/></integrator>)")),
+                                        request(""));
+    EXPECT_TRUE(r->hasAovs());
+    EXPECT_EQ(r->developAovs().channels, std::vector<std::string>{"dd.y.T"});
+}
+
+TEST(AovScene, BadListsAreRefusedWithTheirLine) {
+    TempDir dir;
+    expectError(
+        [&] {
+            loadXml(
+                dir,
+                sceneXml("<integrator type=\"aov\">\n<string name=\"aovs\" value=\"dd.y:dpth\"/>\n"
+                         "<integrator type=\"path\"/></integrator>"));
+        },
+        "scene.xml", 4, "unknown AOV type 'dpth'");
+    expectError(
+        [&] {
+            loadXml(dir,
+                    sceneXml("<integrator type=\"aov\">\n<string name=\"aovs\" value=\"depth\"/>\n"
+                             "<integrator type=\"path\"/></integrator>"));
+        },
+        "scene.xml", 4, "not a NAME:TYPE pair");
+    expectError([&] { makeRenderer(dir, planeScene(kPath), request("d:normal")); }, "--aov", 0,
+                "unknown AOV type 'normal'");
+}
+
+}  // namespace
+}  // namespace caustica::test

@@ -9,6 +9,7 @@
 
 #include "commands.h"
 #include "caustica/io/exr_feature_layers.h"
+#include "caustica/io/exr_layers.h"
 #include "caustica/io/image_io.h"
 #include "caustica/render/denoise.h"
 #include "caustica/render/render_outputs.h"

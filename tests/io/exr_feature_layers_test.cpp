@@ -27,16 +27,6 @@ std::string writeLayeredExr(const std::string& name, const std::vector<std::stri
     return path;
 }
 
-TEST(ExrFeatureLayers, ParsesMitsubaAovSpecs) {
-    const auto spec = parseAovSpec("albedo:albedo,nn:sh_normal,dd.y:depth");
-    ASSERT_EQ(spec.size(), 3u);
-    EXPECT_EQ(spec[2].first, "dd.y");
-    EXPECT_EQ(spec[2].second, "depth");
-    EXPECT_THROW(parseAovSpec("albedo"), Error);
-    EXPECT_THROW(parseAovSpec("a:b:c"), Error);
-    EXPECT_THROW(parseAovSpec(":depth"), Error);
-}
-
 TEST(ExrFeatureLayers, ReadsLayersByType) {
     // Channel order in the file: R G B (0-2), then the AOVs' channels from index 3 on.
     const std::vector<std::string> channels = {"alb.R", "alb.G", "alb.B", "nn.X", "nn.Y", "nn.Z",

@@ -49,7 +49,16 @@ Film::Film(int width, int height, const Filter& filter, Device device)
 }
 
 Film::Film(const FilmDesc& desc, Device device)
-    : Film(desc.width, desc.height, Filter::fromDesc(desc.filter), device) {}
+    : Film(desc.width, desc.height, Filter::fromDesc(desc.filter), device) {
+    setEyeWidth(desc.eyeWidth);
+}
+
+void Film::setEyeWidth(int eyeWidth) {
+    if (eyeWidth != 0 && 2 * eyeWidth != width_)
+        throw Error("stereo film: eye width " + std::to_string(eyeWidth) + " is not half the film width " +
+                    std::to_string(width_));
+    eyeWidth_ = eyeWidth;
+}
 
 void Film::addPass(const SamplePass& pass) {
     if (pass.width != width_ || pass.height != height_)
@@ -66,6 +75,7 @@ void Film::addPass(const SamplePass& pass) {
     view.height = height_;
     view.samplesPerPixel = pass.samplesPerPixel;
     view.footprint = filter_.footprint();
+    view.eyeWidth = eyeWidth_;
     view.filter = filter_;
     view.samples = pass.samples.data();
     weightScratch_.resize(pass.samples.size() * size_t(2 * (2 * view.footprint + 1)));

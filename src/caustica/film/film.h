@@ -13,6 +13,7 @@
 #include <iosfwd>
 #include <vector>
 
+#include "caustica/film/eye_seam.h"
 #include "caustica/film/filter.h"
 #include "caustica/film/image.h"
 #include "caustica/parallel/device.h"
@@ -73,6 +74,7 @@ struct FilmPixel {
 struct FilmSplatView {
     int width = 0, height = 0, samplesPerPixel = 0;
     int footprint = 0;  // f: source pixels visited on each side of the output pixel
+    int eyeWidth = 0;   // stereo: one eye's width; the filter never crosses the seam (eye_seam.h)
     Filter filter;
     const PixelSample* samples = nullptr;
     float* weights = nullptr;     // 2 (2f + 1) per sample
@@ -131,9 +133,11 @@ CA_HD_INLINE void gatherPixel(const FilmSplatView& view, size_t pixel) {
     // One pass adds at most (2f + 1)^2 K terms: float sums lose nothing that matters, and the
     // long-running per-pixel totals stay double.
     float r = 0, g = 0, b = 0, wSum = 0;
+    int xLo, xHi;
+    eyeColumnRange(x, f, view.width, view.eyeWidth, xLo, xHi);
     for (int sy = max(0, y - f); sy <= min(view.height - 1, y + f); ++sy) {
         const int ey = n + (y - sy + f);
-        for (int sx = max(0, x - f); sx <= min(view.width - 1, x + f); ++sx) {
+        for (int sx = xLo; sx <= xHi; ++sx) {
             const int ex = x - sx + f;
             const size_t base = (size_t(sy) * size_t(view.width) + size_t(sx)) * size_t(K);
             for (int k = 0; k < K; ++k) {
@@ -165,6 +169,9 @@ public:
     int width() const { return width_; }
     int height() const { return height_; }
     const Filter& filter() const { return filter_; }
+    /// Stereo: one eye's width (the filter treats the seam at x = eyeWidth as a border); 0 mono.
+    int eyeWidth() const { return eyeWidth_; }
+    void setEyeWidth(int eyeWidth);
 
     /// Splats one pass (must match the film's size; throws caustica::Error otherwise). Invalid
     /// samples (NaN, Inf, a negative channel, a position outside their pixel) are counted and
@@ -194,6 +201,7 @@ public:
 
 private:
     int width_ = 0, height_ = 0;
+    int eyeWidth_ = 0;
     Filter filter_;
     Device device_;
     std::vector<FilmPixel> sums_;

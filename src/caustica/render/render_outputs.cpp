@@ -48,7 +48,11 @@ std::string defaultOutputPath(const std::string& scenePath, const FilmDesc& film
     return fs::path(scenePath).stem().string() + (film.tonemap.ldr ? ".png" : ".exr");
 }
 
-void writeRenderImages(const std::vector<std::string>& paths, const Image& image, const Renderer& r) {
+void writeRenderImages(const std::vector<std::string>& paths, const Image& image, const Renderer& r,
+                       const StereoOutputs& stereo) {
+    if (stereo.enabled != (r.scene().film.eyeWidth > 0))
+        throw Error("the stereo outputs do not match the render (stereo " + std::string(stereo.enabled ? "outputs" : "render") +
+                    " without a stereo " + (stereo.enabled ? "render" : "outputs") + ")");
     const RenderStats stats = r.stats();
     ImageMetadata meta;
     std::ostringstream spp;
@@ -65,6 +69,10 @@ void writeRenderImages(const std::vector<std::string>& paths, const Image& image
     for (const std::string& p : paths) {
         // Written beside the target and renamed, so a killed render never leaves a torn image.
         const std::string ext = fs::path(p).extension().string();
+        if (stereo.enabled && (ext == ".exr" || ext == ".EXR")) {
+            writeStereoExr(p, image, meta, stereo.separate);
+            continue;
+        }
         const std::string tmp = p + ".tmp" + ext;
         const bool toneMapped = tonemap.ldr && (ext == ".png" || ext == ".PNG");
         if (toneMapped && ldr.empty()) ldr = displayToPngLinear(toneMap(image, tonemap));
@@ -78,6 +86,10 @@ void writeRenderImages(const std::vector<std::string>& paths, const Image& image
         std::error_code ec;
         fs::rename(tmp, p, ec);
         if (ec) throw Error(p + ": cannot write the image (" + ec.message() + ")");
+    }
+    if (stereo.enabled && !stereo.anaglyph.empty()) {
+        if (tonemap.ldr && ldr.empty()) ldr = displayToPngLinear(toneMap(image, tonemap));
+        writeAnaglyphPng(stereo.anaglyph, tonemap.ldr ? ldr : image, meta);
     }
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "caustica/film/image.h"
+#include "caustica/render/stereo_outputs.h"
 #include "caustica/scene/scene.h"
 
 namespace caustica {
@@ -24,8 +25,10 @@ void checkWritablePath(const std::string& path, const char* what);
 std::string defaultOutputPath(const std::string& scenePath, const FilmDesc& film);
 /// Writes `image` to every path (.exr, .pfm: linear radiance with the render's metadata; .png:
 /// 8-bit sRGB, or tone-mapped when the scene's film is an ldrfilm), each through a temporary file
-/// and a rename.
-void writeRenderImages(const std::vector<std::string>& paths, const Image& image, const Renderer& renderer);
+/// and a rename. A stereo render (`stereo.enabled`, stereo_outputs.h) writes each .exr as its
+/// stereo EXR(s) and, when asked, the anaglyph.
+void writeRenderImages(const std::vector<std::string>& paths, const Image& image, const Renderer& renderer,
+                       const StereoOutputs& stereo = {});
 void printRenderSummary(const Renderer& renderer, std::FILE* out);
 /// The statistics as JSON (the integrator's own entries included), written atomically.
 void writeRenderStatsJson(const std::string& path, const Renderer& renderer, bool cancelled);

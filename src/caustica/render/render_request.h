@@ -11,6 +11,7 @@
 
 #include "caustica/accel/accel.h"
 #include "caustica/scene/integrator_spec.h"
+#include "caustica/scene/stereo_rig.h"
 
 namespace caustica {
 
@@ -31,6 +32,9 @@ struct RenderRequest {
     /// The integrator's parameters set on the command line (integrator_registry.h lists each
     /// integrator's options); they take the place of the scene's of the same name.
     std::vector<IntegratorParam> integratorParams;
+    /// A stereo pair: the scene's camera becomes a rig and the film holds both eyes side by side
+    /// (scene/stereo_rig.h, docs/STEREO.md). Mode Off: mono.
+    StereoSettings stereo;
 };
 
 }  // namespace caustica

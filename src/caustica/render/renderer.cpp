@@ -40,6 +40,7 @@ RenderIdentity sceneIdentity(const Scene& scene, const RenderRequest& request, u
     id.push_back(identityEntry("crop window", "at " + std::to_string(c.cropX) + "," + std::to_string(c.cropY) + " of " +
                                                   std::to_string(c.width) + "x" + std::to_string(c.height)));
     id.push_back(identityEntry("seed", std::to_string(seed)));
+    id.push_back(stereoIdentityEntry(request.stereo));
     return id;
 }
 
@@ -60,6 +61,7 @@ Renderer::Renderer(Scene scene, const RenderRequest& request, const CheckpointHe
     : scene_(std::make_unique<Scene>(std::move(scene))) {
     Scene& s = *scene_;
     if (request.resolution) applyResolution(s, request.resolution->first, request.resolution->second);
+    applyStereo(s, request.stereo);  // after the resolution: the rig doubles the film's width
     integrator_ = request.integrator.empty() ? s.integrator.type : request.integrator;
     const IntegratorEntry& entry = findIntegrator(integrator_);
     IntegratorParams params = integratorParams(s.integrator, integrator_, request.integratorParams);

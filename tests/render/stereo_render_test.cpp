@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "caustica/integrators/mlt/mlt_target.h"
 #include "caustica/io/exr_multiview.h"
 #include "caustica/io/image_io.h"
 #include "caustica/io/scene_loader.h"
@@ -151,6 +152,30 @@ TEST_F(StereoRender, MltChainsCoverBothEyes) {
     for (int eye = 0; eye < 2; ++eye) {
         EXPECT_GT(eyeMean(mlt, eye), 0.0);
         EXPECT_NEAR(eyeMean(mlt, eye) / eyeMean(path, eye), 1.0, 0.1) << "eye " << eye;
+    }
+}
+
+// MLT's relative target blurs the bootstrap's brightness within each eye (mlt_target.h; here
+// beside the other stereo tests, which build the integrators already).
+TEST(StereoMltTarget, BlurStaysInEachEye) {
+    constexpr int w = 8, h = 4;
+    std::vector<float> luminance;
+    std::vector<uint32_t> pixel;
+    for (uint32_t p = 0; p < uint32_t(2 * w * h); ++p)
+        for (int k = 0; k < 4; ++k) {
+            luminance.push_back(int(p % (2 * w)) < w ? 1.0f : 10.0f);  // the right eye brighter
+            pixel.push_back(p);
+        }
+    const std::vector<float> seam = mltRelativePixelWeights(luminance.data(), pixel.data(), luminance.size(), 2 * w,
+                                                            h, 1, w);
+    const std::vector<float> joined =
+        mltRelativePixelWeights(luminance.data(), pixel.data(), luminance.size(), 2 * w, h, 1, 0);
+    // With the seam each eye is uniform, so its weights are too; without it the right eye's
+    // columns next to the seam are blurred with the dark left eye (a larger weight 1 / B).
+    for (int y = 0; y < h; ++y) {
+        EXPECT_EQ(seam[size_t(y * 2 * w + w)], seam[size_t(y * 2 * w + 2 * w - 1)]);
+        EXPECT_EQ(seam[size_t(y * 2 * w)], seam[size_t(y * 2 * w + w - 1)]);
+        EXPECT_GT(joined[size_t(y * 2 * w + w)], joined[size_t(y * 2 * w + 2 * w - 1)]);
     }
 }
 

@@ -48,6 +48,20 @@ std::string defaultOutputPath(const std::string& scenePath, const FilmDesc& film
     return fs::path(scenePath).stem().string() + (film.tonemap.ldr ? ".png" : ".exr");
 }
 
+void writeImageThroughTemporary(const std::string& path, const std::function<void(const std::string&)>& write) {
+    const std::string tmp = path + ".tmp" + fs::path(path).extension().string();
+    try {
+        write(tmp);
+    } catch (const Error& e) {
+        std::error_code ignored;
+        fs::remove(tmp, ignored);
+        throw Error(path + ": cannot write the image (" + e.what() + ")");
+    }
+    std::error_code ec;
+    fs::rename(tmp, path, ec);
+    if (ec) throw Error(path + ": cannot write the image (" + ec.message() + ")");
+}
+
 void writeRenderImages(const std::vector<std::string>& paths, const Image& image, const Renderer& r,
                        const StereoOutputs& stereo) {
     if (stereo.enabled != (r.scene().film.eyeWidth > 0))
@@ -73,19 +87,9 @@ void writeRenderImages(const std::vector<std::string>& paths, const Image& image
             writeStereoExr(p, image, meta, stereo.separate);
             continue;
         }
-        const std::string tmp = p + ".tmp" + ext;
         const bool toneMapped = tonemap.ldr && (ext == ".png" || ext == ".PNG");
         if (toneMapped && ldr.empty()) ldr = displayToPngLinear(toneMap(image, tonemap));
-        try {
-            writeImage(tmp, toneMapped ? ldr : image, meta);
-        } catch (const Error& e) {
-            std::error_code ignored;
-            fs::remove(tmp, ignored);
-            throw Error(p + ": cannot write the image (" + e.what() + ")");
-        }
-        std::error_code ec;
-        fs::rename(tmp, p, ec);
-        if (ec) throw Error(p + ": cannot write the image (" + ec.message() + ")");
+        writeImageThroughTemporary(p, [&](const std::string& tmp) { writeImage(tmp, toneMapped ? ldr : image, meta); });
     }
     if (stereo.enabled && !stereo.anaglyph.empty()) {
         if (tonemap.ldr && ldr.empty()) ldr = displayToPngLinear(toneMap(image, tonemap));

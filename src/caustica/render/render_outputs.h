@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdio>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -23,6 +24,9 @@ void checkWritablePath(const std::string& path, const char* what);
 /// The output written when none is given: SCENE_NAME.png for an ldrfilm (as Mitsuba writes an
 /// LDR film's image), SCENE_NAME.exr otherwise, in the current directory.
 std::string defaultOutputPath(const std::string& scenePath, const FilmDesc& film);
+/// Runs `write(tmp)` on a temporary name beside `path` (same extension) and renames it over
+/// `path`, so a killed render never leaves a torn image; errors name `path`.
+void writeImageThroughTemporary(const std::string& path, const std::function<void(const std::string&)>& write);
 /// Writes `image` to every path (.exr, .pfm: linear radiance with the render's metadata; .png:
 /// 8-bit sRGB, or tone-mapped when the scene's film is an ldrfilm), each through a temporary file
 /// and a rename. A stereo render (`stereo.enabled`, stereo_outputs.h) writes each .exr as its

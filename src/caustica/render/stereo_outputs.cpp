@@ -16,21 +16,6 @@ bool isExr(const std::string& path) {
     return ext == ".exr" || ext == ".EXR";
 }
 
-/// Runs `write(tmp)` on a temporary name beside `path` and renames it into place.
-template <class Write>
-void writeReplacing(const std::string& path, Write&& write) {
-    const std::string tmp = path + ".tmp" + fs::path(path).extension().string();
-    try {
-        write(tmp);
-    } catch (const Error& e) {
-        std::error_code ignored;
-        fs::remove(tmp, ignored);
-        throw Error(path + ": cannot write the image (" + e.what() + ")");
-    }
-    std::error_code ec;
-    fs::rename(tmp, path, ec);
-    if (ec) throw Error(path + ": cannot write the image (" + ec.message() + ")");
-}
 }  // namespace
 
 std::string stereoEyePath(const std::string& exrPath, int eye) {
@@ -83,19 +68,19 @@ void checkStereoOutputFiles(const std::vector<std::string>& outputs, const Stere
 
 void writeAnaglyphPng(const std::string& path, const Image& sideBySide, const ImageMetadata& meta) {
     const Image anaglyph = anaglyphImage(sideBySide);
-    writeReplacing(path, [&](const std::string& tmp) { writeImage(tmp, anaglyph, meta); });
+    writeImageThroughTemporary(path, [&](const std::string& tmp) { writeImage(tmp, anaglyph, meta); });
 }
 
 void writeStereoExr(const std::string& path, const Image& sideBySide, const ImageMetadata& meta, bool separate) {
     const Image left = stereoEyeImage(sideBySide, 0), right = stereoEyeImage(sideBySide, 1);
     if (!separate) {
-        writeReplacing(path, [&](const std::string& tmp) { writeMultiViewExr(tmp, left, right, meta); });
+        writeImageThroughTemporary(path, [&](const std::string& tmp) { writeMultiViewExr(tmp, left, right, meta); });
         return;
     }
     for (int eye = 0; eye < 2; ++eye) {
         ImageMetadata eyeMeta = meta;
         eyeMeta.entries["caustica.eye"] = eye == 0 ? "left" : "right";
-        writeReplacing(stereoEyePath(path, eye),
+        writeImageThroughTemporary(stereoEyePath(path, eye),
                        [&](const std::string& tmp) { writeImage(tmp, eye == 0 ? left : right, eyeMeta); });
     }
 }

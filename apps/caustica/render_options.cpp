@@ -59,6 +59,15 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
     cmd.add_flag("--resume", c.resume, "Continue the render saved in OUTPUT.ckpt (same scene and settings)");
     cmd.add_flag("--overwrite", c.overwrite, "Start over although OUTPUT.ckpt of an unfinished render exists");
     cmd.add_flag("-q,--quiet", c.quiet, "No progress bar");
+    cmd.add_option("--stereo", o.stereo, "Render a stereo pair (both eyes in one render; docs/STEREO.md): "
+                   "off-axis, parallel or toe-in")->check(CLI::IsMember({"off-axis", "parallel", "toe-in"}));
+    cmd.add_option("--interocular", o.interocular, "Stereo: distance between the eyes in scene units (default 0.065)");
+    cmd.add_option("--convergence", o.convergence, "Stereo: distance of zero parallax (off-axis) or of the toe-in "
+                   "point, scene units (default 1.95)");
+    cmd.add_option("--stereo-output", o.stereoOutput, "Stereo .exr outputs: multiview (one file, views left and "
+                   "right) or separate (NAME.left.exr, NAME.right.exr)")->check(CLI::IsMember({"multiview", "separate"}));
+    cmd.add_option("--anaglyph", c.stereo.anaglyph, "Stereo: also write a red-cyan anaglyph PNG (red: left eye; "
+                   "green, blue: right eye)");
     // Each integrator's own options set its parameters; checked where the scene's are.
     for (const IntegratorEntry& e : integratorRegistry())
         for (const IntegratorOption& option : e.options) {
@@ -74,6 +83,18 @@ void resolveRenderOptions(RenderOptions& o, const CLI::App& cmd) {
     for (const auto& [flag, option] : o.integratorOptions)
         if (cmd.get_option(flag)->count() > 0)
             o.request.integratorParams.push_back({option.first, IntegratorParam::Kind::Text, option.second, flag});
+    if (!o.stereo.empty()) {
+        StereoSettings& s = o.request.stereo;
+        s.mode = parseStereoMode(o.stereo);
+        s.interocular = Float(o.interocular);
+        s.convergence = Float(o.convergence);
+        checkStereoSettings(s);
+        o.control.stereo.enabled = true;
+        o.control.stereo.separate = o.stereoOutput == "separate";
+    } else {
+        for (const char* flag : {"--interocular", "--convergence", "--stereo-output", "--anaglyph"})
+            if (cmd.get_option(flag)->count() > 0) throw Error(std::string(flag) + " needs --stereo MODE");
+    }
     if (o.control.resume && o.control.overwrite) throw Error("--resume and --overwrite exclude each other");
     o.request.defines = parseDefines(o.defines);
     o.request.accel = parseAccelKind(o.accel);

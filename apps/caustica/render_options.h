@@ -25,6 +25,8 @@ struct RenderOptions {
     /// The integrators' options (integrator_registry.h), by flag: parameter name and value.
     std::map<std::string, std::pair<std::string, std::string>> integratorOptions;
     bool kernelStats = false;
+    std::string stereo, stereoOutput = "multiview";  // --stereo MODE, --stereo-output
+    double interocular = 0.065, convergence = 1.95;
     RenderRequest request;
     RunControl control;
 };

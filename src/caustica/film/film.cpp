@@ -49,7 +49,16 @@ Film::Film(int width, int height, const Filter& filter, Device device)
 }
 
 Film::Film(const FilmDesc& desc, Device device)
-    : Film(desc.width, desc.height, Filter::fromDesc(desc.filter), device) {}
+    : Film(desc.width, desc.height, Filter::fromDesc(desc.filter), device) {
+    setEyeWidth(desc.eyeWidth);
+}
+
+void Film::setEyeWidth(int eyeWidth) {
+    if (eyeWidth != 0 && 2 * eyeWidth != width_)
+        throw Error("stereo film: eye width " + std::to_string(eyeWidth) + " is not half the film width " +
+                    std::to_string(width_));
+    eyeWidth_ = eyeWidth;
+}
 
 void Film::addPass(const SamplePass& pass) {
     if (pass.width != width_ || pass.height != height_)
@@ -62,7 +71,8 @@ void Film::addPass(const SamplePass& pass) {
     if (pass.samplesPerPixel == 0) return;
 
     FilmSplatView view;
-    view.grid = gatherGrid(width_, height_, pass.samplesPerPixel, filter_, weightScratch_, invalidScratch_);
+    view.grid = gatherGrid(width_, height_, pass.samplesPerPixel, filter_, weightScratch_, invalidScratch_,
+                           eyeWidth_);
     view.samples = pass.samples.data();
     view.sums = sums_.data();
     parallelFor(device_, "film_sample_weights", sums_.size(),

@@ -106,6 +106,9 @@ public:
     int width() const { return width_; }
     int height() const { return height_; }
     const Filter& filter() const { return filter_; }
+    /// Stereo: one eye's width (the filter treats the seam at x = eyeWidth as a border); 0 mono.
+    int eyeWidth() const { return eyeWidth_; }
+    void setEyeWidth(int eyeWidth);
 
     /// Splats one pass (must match the film's size; throws caustica::Error otherwise). Invalid
     /// samples (NaN, Inf, a negative channel, a position outside their pixel) are counted and
@@ -135,6 +138,7 @@ public:
 
 private:
     int width_ = 0, height_ = 0;
+    int eyeWidth_ = 0;
     Filter filter_;
     Device device_;
     std::vector<FilmPixel> sums_;

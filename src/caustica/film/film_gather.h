@@ -10,7 +10,7 @@
 // (all 0 for an invalid sample), so each exp() of a gaussian is evaluated once per sample and
 // axis instead of once per sample and output pixel.
 // Kernel 2 (gatherSums, per output pixel) visits source rows y - f .. y + f, columns x - f ..
-// x + f, samples k = 0 .. K-1, in that fixed order, and sums w v per channel and w: the same
+// x + f (clipped to the image and, on a stereo film, to the pixel's eye), samples k = 0 .. K-1, in that fixed order, and sums w v per channel and w: the same
 // additions in the same order whatever the thread count or device.
 #pragma once
 
@@ -19,6 +19,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "caustica/film/eye_seam.h"
 #include "caustica/film/filter.h"
 #include "caustica/util/math.h"
 
@@ -31,16 +32,19 @@ inline constexpr Float kSampleSlack = 1.0f / 64.0f;
 struct GatherGrid {
     int width = 0, height = 0, samplesPerPixel = 0;
     int footprint = 0;  // f: source pixels visited on each side of the output pixel
+    int eyeWidth = 0;   // stereo: one eye's width; the filter never crosses the seam (eye_seam.h)
     Filter filter;
     float* weights = nullptr;     // 2 (2f + 1) per sample
     uint32_t* invalid = nullptr;  // per source pixel: its invalid samples
 };
 
 /// The grid of a width x height pass of K samples per pixel: `weights` sized for it (host
-/// scratch kept across passes), `invalid` one entry per pixel.
+/// scratch kept across passes), `invalid` one entry per pixel; `eyeWidth` > 0 for a stereo film.
 inline GatherGrid gatherGrid(int width, int height, int samplesPerPixel, const Filter& filter,
-                             std::vector<float>& weights, std::vector<uint32_t>& invalid) {
+                             std::vector<float>& weights, std::vector<uint32_t>& invalid,
+                             int eyeWidth = 0) {
     GatherGrid g;
+    g.eyeWidth = eyeWidth;
     g.width = width;
     g.height = height;
     g.samplesPerPixel = samplesPerPixel;
@@ -107,9 +111,11 @@ CA_HD_INLINE void gatherSums(const GatherGrid& g, const Samples& samples, size_t
     float acc[C];
     for (int c = 0; c < C; ++c) acc[c] = 0;
     float ws = 0;
+    int xLo, xHi;
+    eyeColumnRange(x, f, g.width, g.eyeWidth, xLo, xHi);
     for (int sy = max(0, y - f); sy <= min(g.height - 1, y + f); ++sy) {
         const int ey = n + (y - sy + f);
-        for (int sx = max(0, x - f); sx <= min(g.width - 1, x + f); ++sx) {
+        for (int sx = xLo; sx <= xHi; ++sx) {
             const int ex = x - sx + f;
             const size_t base = (size_t(sy) * size_t(g.width) + size_t(sx)) * size_t(K);
             for (int k = 0; k < K; ++k) {

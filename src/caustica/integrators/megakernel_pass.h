@@ -11,13 +11,17 @@
 #include "caustica/parallel/buffer.h"
 #include "caustica/parallel/primitives.h"
 #include "caustica/scene/camera.h"
+#include "caustica/scene/stereo_rig.h"
 #include "caustica/util/error.h"
 #include "caustica/util/rng.h"
 
 namespace caustica {
 
 /// The start of every camera sample: sample s of pixel `pixel` (row-major, `width` wide) gets the
-/// random stream (pixel, sample index, seed), a jittered film position and a camera ray.
+/// random stream (pixel, sample index, seed), a jittered film position and a camera ray. On a
+/// stereo rig (camera.eyeWidth > 0) the stream is keyed by the pixel within its eye and by
+/// stereoEyeSeed(seed, eye), so each eye draws exactly what a mono render of that eye's camera
+/// (eyeCamera) draws at that seed.
 struct CameraSample {
     IndependentSampler sampler;
     Vec2f pos;
@@ -27,8 +31,14 @@ struct CameraSample {
 CA_HD_INLINE CameraSample cameraSample(const Camera& camera, size_t pixel, int width, uint64_t sampleIndex,
                                        uint64_t seed) {
     CameraSample c;
-    c.sampler = IndependentSampler(pixel, sampleIndex, seed);
     const int x = int(pixel % size_t(width)), y = int(pixel / size_t(width));
+    if (camera.eyeWidth > 0) {
+        const int eye = x >= camera.eyeWidth ? 1 : 0;
+        const size_t eyePixel = size_t(y) * size_t(camera.eyeWidth) + size_t(x - eye * camera.eyeWidth);
+        c.sampler = IndependentSampler(eyePixel, sampleIndex, stereoEyeSeed(seed, eye));
+    } else {
+        c.sampler = IndependentSampler(pixel, sampleIndex, seed);
+    }
     const Vec2f jitter = c.sampler.get2D();
     c.pos = Vec2f(Float(x) + jitter.x, Float(y) + jitter.y);
     c.ray = sampleCameraRay(camera, c.pos, c.sampler);  // may draw a lens sample

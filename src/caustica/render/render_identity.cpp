@@ -49,6 +49,12 @@ std::string identityNumber(float value) {
     return shortestText(value, [](const char* s) { return std::strtof(s, nullptr); });
 }
 
+IdentityEntry stereoIdentityEntry(const StereoSettings& s) {
+    if (s.mode == StereoMode::Off) return identityEntry("stereo", "off");
+    return identityEntry("stereo", std::string(stereoModeName(s.mode)) + ", interocular " + identityNumber(s.interocular) +
+                                       ", convergence " + identityNumber(s.convergence));
+}
+
 std::string firstIdentityDifference(const RenderIdentity& saved, const RenderIdentity& current) {
     const size_t n = std::max(saved.size(), current.size());
     for (size_t i = 0; i < n; ++i) {

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "caustica/scene/stereo_rig.h"
+
 namespace caustica {
 
 struct IdentityEntry {
@@ -28,6 +30,9 @@ IdentityEntry fileIdentityEntry(std::string name, const std::string& path);
 std::string identityNumber(double value);
 /// The same for a float: the shortest text that reads back to the same float ("0.1").
 std::string identityNumber(float value);
+/// The stereo rig's entry: "off", or its mode, interocular and convergence distances (so a mono
+/// checkpoint never resumes a stereo render, nor the reverse).
+IdentityEntry stereoIdentityEntry(const StereoSettings& stereo);
 
 /// The first entry of `saved` and `current` that differs, as "NAME differs (written for VALUE;
 /// now VALUE)" ("... (not in this render)" / "(not in the checkpoint)" when one list is longer);

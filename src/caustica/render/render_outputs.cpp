@@ -49,7 +49,25 @@ std::string defaultOutputPath(const std::string& scenePath, const FilmDesc& film
     return fs::path(scenePath).stem().string() + (film.tonemap.ldr ? ".png" : ".exr");
 }
 
-void writeRenderImages(const std::vector<std::string>& paths, const Image& image, const Renderer& r) {
+void writeImageThroughTemporary(const std::string& path, const std::function<void(const std::string&)>& write) {
+    const std::string tmp = path + ".tmp" + fs::path(path).extension().string();
+    try {
+        write(tmp);
+    } catch (const Error& e) {
+        std::error_code ignored;
+        fs::remove(tmp, ignored);
+        throw Error(path + ": cannot write the image (" + e.what() + ")");
+    }
+    std::error_code ec;
+    fs::rename(tmp, path, ec);
+    if (ec) throw Error(path + ": cannot write the image (" + ec.message() + ")");
+}
+
+void writeRenderImages(const std::vector<std::string>& paths, const Image& image, const Renderer& r,
+                       const StereoOutputs& stereo) {
+    if (stereo.enabled != (r.scene().film.eyeWidth > 0))
+        throw Error("the stereo outputs do not match the render (stereo " + std::string(stereo.enabled ? "outputs" : "render") +
+                    " without a stereo " + (stereo.enabled ? "render" : "outputs") + ")");
     const RenderStats stats = r.stats();
     ImageMetadata meta;
     std::ostringstream spp;
@@ -67,10 +85,13 @@ void writeRenderImages(const std::vector<std::string>& paths, const Image& image
     for (const std::string& p : paths) {
         // Written beside the target and renamed, so a killed render never leaves a torn image.
         const std::string ext = fs::path(p).extension().string();
-        const std::string tmp = p + ".tmp" + ext;
+        if (stereo.enabled && (ext == ".exr" || ext == ".EXR")) {
+            writeStereoExr(p, image, meta, stereo.separate);
+            continue;
+        }
         const bool toneMapped = tonemap.ldr && (ext == ".png" || ext == ".PNG");
         if (toneMapped && ldr.empty()) ldr = displayToPngLinear(toneMap(image, tonemap));
-        try {
+        writeImageThroughTemporary(p, [&](const std::string& tmp) {
             // EXR: the AOVs as layers of the same file (io/exr_layers.h); PNG, PFM: the image only.
             if (r.hasAovs() && (ext == ".exr" || ext == ".EXR")) {
                 if (aovs.empty()) aovs = r.developAovs();
@@ -78,14 +99,11 @@ void writeRenderImages(const std::vector<std::string>& paths, const Image& image
             } else {
                 writeImage(tmp, toneMapped ? ldr : image, meta);
             }
-        } catch (const Error& e) {
-            std::error_code ignored;
-            fs::remove(tmp, ignored);
-            throw Error(p + ": cannot write the image (" + e.what() + ")");
-        }
-        std::error_code ec;
-        fs::rename(tmp, p, ec);
-        if (ec) throw Error(p + ": cannot write the image (" + ec.message() + ")");
+        });
+    }
+    if (stereo.enabled && !stereo.anaglyph.empty()) {
+        if (tonemap.ldr && ldr.empty()) ldr = displayToPngLinear(toneMap(image, tonemap));
+        writeAnaglyphPng(stereo.anaglyph, tonemap.ldr ? ldr : image, meta);
     }
 }
 

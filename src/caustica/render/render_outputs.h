@@ -3,11 +3,13 @@
 #pragma once
 
 #include <cstdio>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "caustica/film/image.h"
+#include "caustica/render/stereo_outputs.h"
 #include "caustica/scene/scene.h"
 
 namespace caustica {
@@ -22,10 +24,16 @@ void checkWritablePath(const std::string& path, const char* what);
 /// The output written when none is given: SCENE_NAME.png for an ldrfilm (as Mitsuba writes an
 /// LDR film's image), SCENE_NAME.exr otherwise, in the current directory.
 std::string defaultOutputPath(const std::string& scenePath, const FilmDesc& film);
+/// Runs `write(tmp)` on a temporary name beside `path` (same extension) and renames it over
+/// `path`, so a killed render never leaves a torn image; errors name `path`.
+void writeImageThroughTemporary(const std::string& path, const std::function<void(const std::string&)>& write);
 /// Writes `image` to every path (.exr, .pfm: linear radiance with the render's metadata; .png:
 /// 8-bit sRGB, or tone-mapped when the scene's film is an ldrfilm), each through a temporary file
-/// and a rename. A render with AOVs writes them as layers of every .exr (io/exr_layers.h).
-void writeRenderImages(const std::vector<std::string>& paths, const Image& image, const Renderer& renderer);
+/// and a rename. A render with AOVs writes them as layers of every .exr (io/exr_layers.h); a
+/// stereo render (`stereo.enabled`, stereo_outputs.h) writes each .exr as its stereo EXR(s) and,
+/// when asked, the anaglyph.
+void writeRenderImages(const std::vector<std::string>& paths, const Image& image, const Renderer& renderer,
+                       const StereoOutputs& stereo = {});
 void printRenderSummary(const Renderer& renderer, std::FILE* out);
 /// The statistics as JSON (the integrator's own entries included), written atomically.
 void writeRenderStatsJson(const std::string& path, const Renderer& renderer, bool cancelled);

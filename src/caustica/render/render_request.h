@@ -11,6 +11,7 @@
 
 #include "caustica/accel/accel.h"
 #include "caustica/scene/integrator_spec.h"
+#include "caustica/scene/stereo_rig.h"
 
 namespace caustica {
 
@@ -34,6 +35,9 @@ struct RenderRequest {
     /// AOVs asked for on the command line (--aov "dd.y:depth,nn:sh_normal"); they replace the
     /// scene's aov integrator's list. "" = the scene's (if any).
     std::string aovs;
+    /// A stereo pair: the scene's camera becomes a rig and the film holds both eyes side by side
+    /// (scene/stereo_rig.h, docs/STEREO.md). Mode Off: mono.
+    StereoSettings stereo;
 };
 
 }  // namespace caustica

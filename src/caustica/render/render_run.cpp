@@ -16,6 +16,7 @@ namespace fs = std::filesystem;
 
 std::optional<CheckpointHeader> prepareRun(const RunControl& c) {
     for (const std::string& out : c.outputs) checkImageOutputPath(out);
+    checkStereoOutputFiles(c.outputs, c.stereo);
     if (!c.statsJson.empty()) checkWritablePath(c.statsJson, "statistics");
     if (c.checkpoint.empty()) {
         if (c.resume) throw Error("--resume needs a checkpoint, and this render writes none");
@@ -67,7 +68,7 @@ RunResult runRender(Renderer& renderer, const RunControl& c) {
         if (c.checkpointEvery > 0 && renderer.runSeconds() - lastCheckpoint >= c.checkpointEvery &&
             !renderer.finished()) {
             lastCheckpoint = renderer.runSeconds();
-            writeRenderImages(c.outputs, renderer.develop(), renderer);
+            writeRenderImages(c.outputs, renderer.develop(), renderer, c.stereo);
             saveCheckpoint();
         }
     }
@@ -76,8 +77,8 @@ RunResult runRender(Renderer& renderer, const RunControl& c) {
     // A render interrupted before its integrator had an image (MLT's bootstrap) saves its state
     // but writes no image.
     if (renderer.session().hasImage()) {
-        writeRenderImages(c.outputs, renderer.develop(), renderer);
-        result.written = c.outputs;
+        writeRenderImages(c.outputs, renderer.develop(), renderer, c.stereo);
+        result.written = stereoOutputFiles(c.outputs, c.stereo);
     }
     if (result.cancelled) {
         saveCheckpoint();

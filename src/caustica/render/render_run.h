@@ -15,6 +15,7 @@
 
 #include "caustica/render/checkpoint_envelope.h"
 #include "caustica/render/renderer.h"
+#include "caustica/render/stereo_outputs.h"
 
 namespace caustica {
 
@@ -28,6 +29,7 @@ struct RunControl {
     bool quiet = false;                // no progress bar, no start lines
     bool catchInterrupts = true;       // Ctrl-C / SIGTERM finish the step and save (interrupt.h)
     const std::atomic<bool>* cancel = nullptr;  // also stops after the current step when set
+    StereoOutputs stereo;              // a stereo render's EXR layout and anaglyph
 };
 
 struct RunResult {

@@ -41,6 +41,8 @@ RenderIdentity sceneIdentity(const Scene& scene, const RenderRequest& request, u
     id.push_back(identityEntry("crop window", "at " + std::to_string(c.cropX) + "," + std::to_string(c.cropY) + " of " +
                                                   std::to_string(c.width) + "x" + std::to_string(c.height)));
     id.push_back(identityEntry("seed", std::to_string(seed)));
+    // Only a stereo render names its rig, so mono checkpoints of earlier versions still resume.
+    if (request.stereo.mode != StereoMode::Off) id.push_back(stereoIdentityEntry(request.stereo));
     return id;
 }
 
@@ -61,6 +63,7 @@ Renderer::Renderer(Scene scene, const RenderRequest& request, const CheckpointHe
     : scene_(std::make_unique<Scene>(std::move(scene))) {
     Scene& s = *scene_;
     if (request.resolution) applyResolution(s, request.resolution->first, request.resolution->second);
+    applyStereo(s, request.stereo);  // after the resolution: the rig doubles the film's width
     integrator_ = request.integrator.empty() ? s.integrator.type : request.integrator;
     const IntegratorEntry& entry = findIntegrator(integrator_);
     IntegratorParams params = integratorParams(s.integrator, integrator_, request.integratorParams);
@@ -100,6 +103,12 @@ Renderer::Renderer(Scene scene, const RenderRequest& request, const CheckpointHe
     // a resume never drops or restarts them.
     const bool aovsFromRequest = !request.aovs.empty();
     if (aovsFromRequest || !s.integrator.aovs.empty()) {
+        // The stereo outputs (multi-view EXR, eye files) have no AOV layers yet: refuse rather
+        // than drop them.
+        if (s.film.eyeWidth > 0)
+            throw Error(std::string(aovsFromRequest ? "--aov" : s.integrator.aovsWhere) +
+                        ": AOVs of a stereo render are not supported (render each eye's AOVs without "
+                        "--stereo)");
         const AovSpec spec = aovsFromRequest ? parseAovSpec(request.aovs, "--aov")
                                              : parseAovSpec(s.integrator.aovs, s.integrator.aovsWhere);
         aov_ = std::make_unique<AovSession>(s, *accel_, device_, seed_, spec, *session_, integrator_);

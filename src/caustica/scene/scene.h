@@ -42,6 +42,7 @@ struct ToneMapDesc {
 /// holds the full size and the window's offset).
 struct FilmDesc {
     int width = 768, height = 576;
+    int eyeWidth = 0;  // stereo (scene/stereo_rig.h): one eye's width, the seam a border; 0 mono
     FilterDesc filter;
     ToneMapDesc tonemap;
 };

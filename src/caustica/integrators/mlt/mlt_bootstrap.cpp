@@ -8,11 +8,12 @@
 namespace caustica {
 
 MltBootstrapPlan planMltBootstrap(std::vector<float>& importance, const std::vector<uint32_t>& pixel,
-                                  const MltSettings& settings, int width, int height, uint64_t seed) {
+                                  const MltSettings& settings, int width, int height, uint64_t seed,
+                                  int eyeWidth) {
     const uint64_t m = importance.size();
     MltBootstrapPlan plan;
     if (settings.target == MltTarget::Relative && m >= 2) {
-        plan.pixelWeight = mltRelativePixelWeights(importance.data(), pixel.data(), (m + 1) / 2, width, height, 2);
+        plan.pixelWeight = mltRelativePixelWeights(importance.data(), pixel.data(), (m + 1) / 2, width, height, 2, eyeWidth);
         for (uint64_t i = 0; i < m; ++i) importance[i] = i % 2 == 0 ? 0.0f : importance[i] * plan.pixelWeight[pixel[i]];
         plan.samples = m / 2;
     } else {

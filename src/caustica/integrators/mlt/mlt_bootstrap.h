@@ -26,7 +26,8 @@ struct MltBootstrapPlan {
 /// fell in (read under the relative target only; may be empty under the luminance target); on return `importance` holds I under the settings' target, 0 for samples that only
 /// estimated B (so no chain starts there). Throws caustica::Error if no sample carries light.
 MltBootstrapPlan planMltBootstrap(std::vector<float>& importance, const std::vector<uint32_t>& pixel,
-                                  const MltSettings& settings, int width, int height, uint64_t seed);
+                                  const MltSettings& settings, int width, int height, uint64_t seed,
+                                  int eyeWidth = 0);
 
 /// Starts the estimate of b from the plan (b0 = the plan's mean, fixed in the splat weights) and
 /// records it in `stats` with the bootstrap size m.

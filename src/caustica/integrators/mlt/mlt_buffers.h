@@ -103,6 +103,7 @@ struct MltChainBuffers {
         MltSplatView v;
         v.width = width;
         v.height = height;
+        v.eyeWidth = film.eyeWidth();
         v.filter = film.filter();
         v.footprint = film.filter().footprint();
         v.splats = splats.data();

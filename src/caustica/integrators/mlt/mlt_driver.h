@@ -155,7 +155,7 @@ public:
     MltDriver(const Scene& scene, const Accel& accel, const PathSettings& path, const MltSettings& s, uint64_t seed)
         : Impl(scene, path, s, seed),
           scene_(scene, accel, device()),
-          film_(scene.film.filter, scene.film.width, scene.film.height),
+          film_(scene.film.filter, scene.film.width, scene.film.height, scene.film.eyeWidth),
           buf_(device(), s.chains, s.proposals, pixels_, s.splat, mltSplatBatch(s, pixels_)) {
         const uint32_t n = s.chains;
         const uint32_t bounces = mltStoredBounces(path);
@@ -210,7 +210,8 @@ public:
         const std::vector<uint32_t> hostPixel =
             settings.target == MltTarget::Relative ? pixelOf.toHost() : std::vector<uint32_t>{};
         const MltBootstrapPlan plan =
-            planMltBootstrap(hostImportance, hostPixel, settings, params_.width, params_.height, params_.seed);
+            planMltBootstrap(hostImportance, hostPixel, settings, params_.width, params_.height, params_.seed,
+                             film_.eyeWidth());
         setPixelWeight(plan.pixelWeight);
         adoptMltBootstrap(plan, m, b_, stats);
 

@@ -73,13 +73,15 @@ struct MltNormalisation {
 /// positions) and by the filter's coverage at the image border.
 class MltFilm {
 public:
-    MltFilm(const FilterDesc& filter, int width, int height);
+    /// eyeWidth > 0: a stereo film, whose seam is a border like the image's (eye_seam.h).
+    MltFilm(const FilterDesc& filter, int width, int height, int eyeWidth = 0);
     Image develop(const double* sums, const MltNormalisation& b, double totalWeight) const;
     const Filter& filter() const { return filter_; }
+    int eyeWidth() const { return eyeWidth_; }
 
 private:
     Filter filter_;
-    int width_, height_;
+    int width_, height_, eyeWidth_;
     std::vector<double> coverageX_, coverageY_;
 };
 

@@ -135,12 +135,23 @@ std::vector<double> borderCoverage(const Filter& filter, int size) {
 
 }  // namespace
 
-MltFilm::MltFilm(const FilterDesc& filter, int width, int height)
+/// borderCoverage of the columns; on a stereo film each eye's, side by side.
+static std::vector<double> columnCoverage(const Filter& filter, int width, int eyeWidth) {
+    if (eyeWidth <= 0) return borderCoverage(filter, width);
+    std::vector<double> eye = borderCoverage(filter, eyeWidth), both = eye;
+    both.insert(both.end(), eye.begin(), eye.end());
+    return both;
+}
+
+MltFilm::MltFilm(const FilterDesc& filter, int width, int height, int eyeWidth)
     : filter_(Filter::fromDesc(filter)),
       width_(width),
       height_(height),
-      coverageX_(borderCoverage(filter_, width)),
-      coverageY_(borderCoverage(filter_, height)) {}
+      eyeWidth_(eyeWidth),
+      coverageX_(columnCoverage(filter_, width, eyeWidth)),
+      coverageY_(borderCoverage(filter_, height)) {
+    if (eyeWidth != 0 && 2 * eyeWidth != width) throw Error("mlt: the eye width is not half the film width");
+}
 
 Image MltFilm::develop(const double* sums, const MltNormalisation& b, double totalWeight) const {
     Image out(width_, height_);

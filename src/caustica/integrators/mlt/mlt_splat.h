@@ -12,6 +12,7 @@
 
 #include <cstdint>
 
+#include "caustica/film/eye_seam.h"
 #include "caustica/film/filter.h"
 #include "caustica/util/atomic.h"
 #include "caustica/util/spectrum.h"
@@ -36,6 +37,7 @@ inline constexpr uint32_t kNoPixel = 0xffffffffu;
 /// What the splat kernels see (pointers valid on the device running them).
 struct MltSplatView {
     int width = 0, height = 0;
+    int eyeWidth = 0;                  // stereo: one eye's width; splats never cross the seam
     Filter filter;
     int footprint = 0;                 // filter.footprint()
     const MltSplat* splats = nullptr;
@@ -63,10 +65,12 @@ CA_HD_INLINE void splatAtomic(const MltSplatView& v, uint32_t i) {
     const uint32_t pixel = splatPixel(v, s);
     if (pixel == kNoPixel) return;
     const int sx = int(pixel % uint32_t(v.width)), sy = int(pixel / uint32_t(v.width));
+    int xLo, xHi;
+    eyeColumnRange(sx, v.footprint, v.width, v.eyeWidth, xLo, xHi);
     for (int y = max(0, sy - v.footprint); y <= min(v.height - 1, sy + v.footprint); ++y) {
         const Float wy = v.filter.eval(s.pos.y - (Float(y) + 0.5f));
         if (wy == 0) continue;
-        for (int x = max(0, sx - v.footprint); x <= min(v.width - 1, sx + v.footprint); ++x) {
+        for (int x = xLo; x <= xHi; ++x) {
             const Float w = wy * v.filter.eval(s.pos.x - (Float(x) + 0.5f));
             if (w == 0) continue;
             float* a = v.accum + kMltValuesPerPixel * (size_t(y) * size_t(v.width) + size_t(x));
@@ -105,8 +109,10 @@ CA_HD_INLINE void findPixelStart(uint32_t* pixelStart, const uint32_t* sortedPix
 CA_HD_INLINE void gatherSplats(const MltSplatView& v, uint32_t pixel) {
     const int x = int(pixel % uint32_t(v.width)), y = int(pixel / uint32_t(v.width));
     double sum[kMltValuesPerPixel] = {};
+    int xLo, xHi;
+    eyeColumnRange(x, v.footprint, v.width, v.eyeWidth, xLo, xHi);
     for (int sy = max(0, y - v.footprint); sy <= min(v.height - 1, y + v.footprint); ++sy) {
-        for (int sx = max(0, x - v.footprint); sx <= min(v.width - 1, x + v.footprint); ++sx) {
+        for (int sx = xLo; sx <= xHi; ++sx) {
             const uint32_t source = uint32_t(sy) * uint32_t(v.width) + uint32_t(sx);
             for (uint32_t e = v.pixelStart[source]; e < v.pixelStart[source + 1]; ++e) {
                 const MltSplat& s = v.splats[v.sortedSplat[e]];

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "caustica/film/eye_seam.h"
 #include "caustica/util/error.h"
 
 namespace caustica {
@@ -15,13 +16,15 @@ MltTarget parseMltTarget(const std::string& name) {
 
 namespace {
 
-/// Box blur of `v` (width x height) with radius r, separable, normalised at the borders.
-std::vector<double> boxBlur(const std::vector<double>& v, int width, int height, int r) {
+/// Box blur of `v` (width x height) with radius r, separable, normalised at the borders (and at a
+/// stereo film's seam: eye_seam.h).
+std::vector<double> boxBlur(const std::vector<double>& v, int width, int height, int r, int eyeWidth) {
     std::vector<double> tmp(v.size()), out(v.size());
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
             double s = 0;
-            const int lo = std::max(0, x - r), hi = std::min(width - 1, x + r);
+            int lo, hi;
+            eyeColumnRange(x, r, width, eyeWidth, lo, hi);
             for (int i = lo; i <= hi; ++i) s += v[size_t(y) * size_t(width) + size_t(i)];
             tmp[size_t(y) * size_t(width) + size_t(x)] = s / double(hi - lo + 1);
         }
@@ -38,7 +41,7 @@ std::vector<double> boxBlur(const std::vector<double>& v, int width, int height,
 }  // namespace
 
 std::vector<float> mltRelativePixelWeights(const float* luminance, const uint32_t* pixel, uint64_t count,
-                                           int width, int height, uint64_t stride) {
+                                           int width, int height, uint64_t stride, int eyeWidth) {
     const size_t pixels = size_t(width) * size_t(height);
     std::vector<double> sum(pixels, 0.0);
     for (uint64_t i = 0; i < count * stride; i += stride)
@@ -50,7 +53,7 @@ std::vector<float> mltRelativePixelWeights(const float* luminance, const uint32_
     int r = 0;
     while (r < std::max(width, height) && double((2 * r + 1) * (2 * r + 1)) * perPixel < kMltTargetSamplesPerEstimate)
         ++r;
-    const std::vector<double> brightness = r > 0 ? boxBlur(sum, width, height, r) : sum;
+    const std::vector<double> brightness = r > 0 ? boxBlur(sum, width, height, r, eyeWidth) : sum;
     double mean = 0;
     for (double b : brightness) mean += b;
     mean /= double(pixels);

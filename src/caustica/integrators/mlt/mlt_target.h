@@ -31,8 +31,8 @@ inline constexpr double kMltTargetFloor = 1.0;
 
 /// Per-pixel weights 1 / B from `count` bootstrap samples (luminance and pixel index each, the
 /// i-th at index i x stride) on a width x height film. Every weight is finite and positive; a
-/// black bootstrap gives weights 1.
+/// black bootstrap gives weights 1. On a stereo film (eyeWidth > 0) the blur stays in each eye.
 std::vector<float> mltRelativePixelWeights(const float* luminance, const uint32_t* pixel, uint64_t count,
-                                           int width, int height, uint64_t stride = 1);
+                                           int width, int height, uint64_t stride = 1, int eyeWidth = 0);
 
 }  // namespace caustica

@@ -253,7 +253,7 @@ private:
         addLd_ = true;
         if (visibleCount_ == 0) return sppmAutoRadius(scene);
         sppm_detail::footprints(Exec{}, visibleCount_, list_.data(), points_.data(), scene_.view().camera,
-                                radii_.data());
+                                width_, uint32_t(entriesPerPixel()), radii_.data());
         std::vector<Float> widths = radii_.toHost();
         widths.resize(visibleCount_);
         std::nth_element(widths.begin(), widths.begin() + widths.size() / 2, widths.end());

@@ -59,13 +59,17 @@ void mortonKeys(Exec exec, size_t count, const uint32_t* list, const SppmVisible
            [=] CA_HD(size_t j) { keys[j] = sppmMorton(points[list[j]].si.p, lo, invExtent); });
 }
 
-/// The pixel footprint at each listed visible point (straight distance to the camera), into `out`.
+/// The pixel footprint at each listed visible point (straight distance to its eye: the camera, or
+/// on a stereo rig the eye of the point's pixel), into `out`. Entry s is pixel s / perPixel of a
+/// film `width` pixels wide.
 template <class Exec>
 void footprints(Exec exec, size_t count, const uint32_t* list, const SppmVisiblePoint* points, Camera camera,
-                Float* out) {
+                int width, uint32_t perPixel, Float* out) {
     launch(exec, "sppm.footprint", count, [=] CA_HD(size_t j) {
-        const Vec3f eye = camera.worldFromCamera.applyPoint(Vec3f(0));
-        out[j] = pixelFootprint(camera, length(points[list[j]].si.p - eye));
+        const SppmVisiblePoint& vp = points[list[j]];
+        const Float filmX = Float((vp.stat / perPixel) % uint32_t(width));
+        const Vec3f eye = cameraEyePosition(camera, filmX);
+        out[j] = pixelFootprint(camera, length(vp.si.p - eye));
     });
 }
 

@@ -87,7 +87,9 @@ const std::vector<IntegratorOption>& ppmOptions() {
 Float sppmAutoRadius(const Scene& scene) {
     const Bounds3f b = scene.bounds();
     const double diagonal = b.empty() ? 1.0 : double(length(b.diagonal()));
-    const double pixels = double(std::max({scene.film.width, scene.film.height, 1}));
+    // One eye's width on a stereo rig (the film holds both side by side).
+    const int width = scene.camera.eyeWidth > 0 ? scene.camera.eyeWidth : scene.film.width;
+    const double pixels = double(std::max({width, scene.film.height, 1}));
     const double r = 3.0 * (diagonal > 0 ? diagonal : 1.0) / pixels;
     return Float(r);
 }

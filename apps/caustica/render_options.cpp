@@ -50,6 +50,10 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
     cmd.add_option("--aov", r.aovs, "AOVs written as layers of the .exr output, Mitsuba's aovs list NAME:TYPE,... "
                    "(types: depth, position, uv, geo_normal, sh_normal, albedo, prim_index, shape_index, "
                    "variance; replaces the scene's aov integrator's list; docs/AOV.md)");
+    cmd.add_option("--denoise", o.denoise, "Also write the final image denoised, NAME.denoised.EXT beside every "
+                   "output: nlm (caustica's filter) or oidn (Intel Open Image Denoise); adds the guide AOVs "
+                   "(docs/DENOISING.md)")->check(CLI::IsMember({"nlm", "oidn"}));
+    cmd.add_option("--oidn-library", o.oidnLibrary, "--denoise oidn: the OpenImageDenoise library to load");
     cmd.add_flag("--kernel-stats", o.kernelStats, "Time every named kernel launch and print the table at the end");
     cmd.add_option("--stats-json", c.statsJson, "Write the final statistics as JSON to this file");
     cmd.add_option("--spp-per-pass", r.samplesPerPass, "Samples per pixel in one pass (progress and checkpoint "
@@ -94,6 +98,15 @@ void resolveRenderOptions(RenderOptions& o, const CLI::App& cmd) {
     } else {
         for (const char* flag : {"--interocular", "--convergence", "--stereo-output", "--anaglyph"})
             if (cmd.get_option(flag)->count() > 0) throw Error(std::string(flag) + " needs --stereo MODE");
+    }
+    if (!o.denoise.empty()) {
+        DenoiseSettings d;
+        d.method = parseDenoiseMethod(o.denoise);
+        d.oidn.library = o.oidnLibrary;
+        o.control.denoise = d;
+        o.request.denoiseGuides = true;
+    } else if (cmd.get_option("--oidn-library")->count() > 0) {
+        throw Error("--oidn-library needs --denoise oidn");
     }
     if (o.control.resume && o.control.overwrite) throw Error("--resume and --overwrite exclude each other");
     o.request.defines = parseDefines(o.defines);

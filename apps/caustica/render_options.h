@@ -27,6 +27,7 @@ struct RenderOptions {
     bool kernelStats = false;
     std::string stereo, stereoOutput = "multiview";  // --stereo MODE, --stereo-output
     double interocular = 0.065, convergence = 1.95;
+    std::string denoise, oidnLibrary;  // --denoise METHOD, --oidn-library PATH
     RenderRequest request;
     RunControl control;
 };

@@ -63,11 +63,7 @@ void writeImageThroughTemporary(const std::string& path, const std::function<voi
     if (ec) throw Error(path + ": cannot write the image (" + ec.message() + ")");
 }
 
-void writeRenderImages(const std::vector<std::string>& paths, const Image& image, const Renderer& r,
-                       const StereoOutputs& stereo) {
-    if (stereo.enabled != (r.scene().film.eyeWidth > 0))
-        throw Error("the stereo outputs do not match the render (stereo " + std::string(stereo.enabled ? "outputs" : "render") +
-                    " without a stereo " + (stereo.enabled ? "render" : "outputs") + ")");
+ImageMetadata renderImageMetadata(const Renderer& r) {
     const RenderStats stats = r.stats();
     ImageMetadata meta;
     std::ostringstream spp;
@@ -79,6 +75,15 @@ void writeRenderImages(const std::vector<std::string>& paths, const Image& image
     meta.entries["caustica.seed"] = std::to_string(r.seed());
     meta.entries["caustica.scene"] = r.scene().sourceFile;
     meta.entries["caustica.invalidSamples"] = std::to_string(stats.invalidSamples);
+    return meta;
+}
+
+void writeRenderImages(const std::vector<std::string>& paths, const Image& image, const Renderer& r,
+                       const StereoOutputs& stereo) {
+    if (stereo.enabled != (r.scene().film.eyeWidth > 0))
+        throw Error("the stereo outputs do not match the render (stereo " + std::string(stereo.enabled ? "outputs" : "render") +
+                    " without a stereo " + (stereo.enabled ? "render" : "outputs") + ")");
+    const ImageMetadata meta = renderImageMetadata(r);
     const ToneMapDesc& tonemap = r.scene().film.tonemap;
     Image ldr;  // tone-mapped once, for every PNG output of an ldrfilm
     AovImage aovs;  // developed once, for every EXR output of a render with AOVs

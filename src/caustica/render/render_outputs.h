@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "caustica/film/image.h"
+#include "caustica/io/image_io.h"
 #include "caustica/render/stereo_outputs.h"
 #include "caustica/scene/scene.h"
 
@@ -27,6 +28,8 @@ std::string defaultOutputPath(const std::string& scenePath, const FilmDesc& film
 /// Runs `write(tmp)` on a temporary name beside `path` (same extension) and renames it over
 /// `path`, so a killed render never leaves a torn image; errors name `path`.
 void writeImageThroughTemporary(const std::string& path, const std::function<void(const std::string&)>& write);
+/// The render's metadata written into its images (spp, render time, integrator, seed, ...).
+ImageMetadata renderImageMetadata(const Renderer& renderer);
 /// Writes `image` to every path (.exr, .pfm: linear radiance with the render's metadata; .png:
 /// 8-bit sRGB, or tone-mapped when the scene's film is an ldrfilm), each through a temporary file
 /// and a rename. A render with AOVs writes them as layers of every .exr (io/exr_layers.h); a

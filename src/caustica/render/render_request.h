@@ -35,6 +35,8 @@ struct RenderRequest {
     /// AOVs asked for on the command line (--aov "dd.y:depth,nn:sh_normal"); they replace the
     /// scene's aov integrator's list. "" = the scene's (if any).
     std::string aovs;
+    /// `render --denoise`: add the denoiser's guide AOVs (render_denoise.h) to the AOVs.
+    bool denoiseGuides = false;
     /// A stereo pair: the scene's camera becomes a rig and the film holds both eyes side by side
     /// (scene/stereo_rig.h, docs/STEREO.md). Mode Off: mono.
     StereoSettings stereo;

@@ -1,11 +1,13 @@
 #include "caustica/render/render_run.h"
 
+
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 
 #include "caustica/render/interrupt.h"
+#include "caustica/render/render_denoise.h"
 #include "caustica/render/render_outputs.h"
 #include "caustica/util/error.h"
 #include "caustica/util/progress.h"
@@ -17,6 +19,7 @@ namespace fs = std::filesystem;
 std::optional<CheckpointHeader> prepareRun(const RunControl& c) {
     for (const std::string& out : c.outputs) checkImageOutputPath(out);
     checkStereoOutputFiles(c.outputs, c.stereo);
+    if (c.denoise) checkDenoiseOutputs(c.outputs, *c.denoise);
     if (!c.statsJson.empty()) checkWritablePath(c.statsJson, "statistics");
     if (c.checkpoint.empty()) {
         if (c.resume) throw Error("--resume needs a checkpoint, and this render writes none");
@@ -77,8 +80,13 @@ RunResult runRender(Renderer& renderer, const RunControl& c) {
     // A render interrupted before its integrator had an image (MLT's bootstrap) saves its state
     // but writes no image.
     if (renderer.session().hasImage()) {
-        writeRenderImages(c.outputs, renderer.develop(), renderer, c.stereo);
+        const Image image = renderer.develop();
+        writeRenderImages(c.outputs, image, renderer, c.stereo);
         result.written = stereoOutputFiles(c.outputs, c.stereo);
+        // Only the final image is denoised (not every checkpoint's: the filter costs seconds).
+        if (c.denoise)
+            for (std::string& p : writeDenoisedImages(c.outputs, image, renderer, *c.denoise))
+                result.written.push_back(std::move(p));
     }
     if (result.cancelled) {
         saveCheckpoint();

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "caustica/render/checkpoint_envelope.h"
+#include "caustica/render/denoise.h"
 #include "caustica/render/renderer.h"
 #include "caustica/render/stereo_outputs.h"
 
@@ -30,6 +31,9 @@ struct RunControl {
     bool catchInterrupts = true;       // Ctrl-C / SIGTERM finish the step and save (interrupt.h)
     const std::atomic<bool>* cancel = nullptr;  // also stops after the current step when set
     StereoOutputs stereo;              // a stereo render's EXR layout and anaglyph
+    /// Denoise the final image into NAME.denoised.EXT beside every output (render_denoise.h); the
+    /// request must then ask for the guides (RenderRequest::denoiseGuides).
+    std::optional<DenoiseSettings> denoise;
 };
 
 struct RunResult {

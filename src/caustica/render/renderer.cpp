@@ -1,5 +1,6 @@
 #include "caustica/render/renderer.h"
 
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -8,6 +9,7 @@
 #include "caustica/parallel/device_select.h"
 #include "caustica/render/aov_session.h"
 #include "caustica/render/integrator_registry.h"
+#include "caustica/render/render_denoise.h"
 #include "caustica/util/atomic_file.h"
 #include "caustica/util/error.h"
 #include "caustica/util/progress.h"
@@ -102,15 +104,18 @@ Renderer::Renderer(Scene scene, const RenderRequest& request, const CheckpointHe
     // AOVs: the command line's list, else the scene's aov integrator's. Part of the identity, so
     // a resume never drops or restarts them.
     const bool aovsFromRequest = !request.aovs.empty();
-    if (aovsFromRequest || !s.integrator.aovs.empty()) {
+    if (aovsFromRequest || !s.integrator.aovs.empty() || request.denoiseGuides) {
+        const std::string where = request.denoiseGuides && !aovsFromRequest && s.integrator.aovs.empty()
+                                      ? "--denoise"
+                                      : aovsFromRequest ? "--aov" : s.integrator.aovsWhere;
         // The stereo outputs (multi-view EXR, eye files) have no AOV layers yet: refuse rather
         // than drop them.
         if (s.film.eyeWidth > 0)
-            throw Error(std::string(aovsFromRequest ? "--aov" : s.integrator.aovsWhere) +
-                        ": AOVs of a stereo render are not supported (render each eye's AOVs without "
-                        "--stereo)");
-        const AovSpec spec = aovsFromRequest ? parseAovSpec(request.aovs, "--aov")
-                                             : parseAovSpec(s.integrator.aovs, s.integrator.aovsWhere);
+            throw Error(where + ": AOVs (and the denoiser's guides) of a stereo render are not supported");
+        AovSpec spec = aovsFromRequest ? parseAovSpec(request.aovs, "--aov")
+                       : !s.integrator.aovs.empty() ? parseAovSpec(s.integrator.aovs, s.integrator.aovsWhere)
+                                                    : AovSpec{};
+        if (request.denoiseGuides) spec = withDenoiseGuides(std::move(spec), session_->rendersPixelPasses());
         aov_ = std::make_unique<AovSession>(s, *accel_, device_, seed_, spec, *session_, integrator_);
         identity_.push_back(identityEntry("aovs", spec.text()));
     }

@@ -1,0 +1,33 @@
+// render_denoise.h — `caustica render --denoise`: the guide AOVs a render adds for the denoiser,
+// and the denoised copies of the outputs written at the end of the render (NAME.denoised.EXT
+// beside NAME.EXT, which keeps the noisy image). The denoiser itself is render/denoise.h.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "caustica/film/aov_layers.h"
+#include "caustica/render/denoise.h"
+
+namespace caustica {
+
+class Renderer;
+
+/// `spec` with the guides the denoisers read added where it has none of their type: albedo,
+/// sh_normal, depth, and (when the integrator renders independent pixel samples) variance, named
+/// "denoise.albedo", ... .
+AovSpec withDenoiseGuides(AovSpec spec, bool pixelPasses);
+
+/// Where the denoised copy of output `path` goes: "out/a.exr" -> "out/a.denoised.exr".
+std::string denoisedOutputPath(const std::string& path);
+
+/// Refuses, before rendering, what would make the denoising at the end fail: an output the
+/// denoised copy cannot be written to, an OIDN that cannot be found.
+void checkDenoiseOutputs(const std::vector<std::string>& outputs, const DenoiseSettings& settings);
+
+/// Denoises the render's image with its guide AOVs and writes it to every output's denoised
+/// path (colour only). Returns the paths written.
+std::vector<std::string> writeDenoisedImages(const std::vector<std::string>& outputs, const Image& image,
+                                             const Renderer& renderer, const DenoiseSettings& settings);
+
+}  // namespace caustica

@@ -1,0 +1,64 @@
+// render_denoise_cli_test.cpp — `caustica render --denoise`: the denoised copy beside the kept
+// noisy output, the guide AOVs in the noisy EXR, bad combinations refused before rendering.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "cli_helpers.h"
+#include "render_helpers.h"
+#include "caustica/io/image_io.h"
+
+namespace caustica::test {
+namespace {
+
+class RenderDenoiseCli : public CliFixture {
+protected:
+    const std::string box = sourcePath("scenes/cornell-box/scene.xml");
+};
+
+TEST_F(RenderDenoiseCli, WritesTheDenoisedCopyBesideTheNoisyImage) {
+    const CliResult r = runCli("render " + box + " --res 32x24 --spp 4 -q --denoise nlm -o " + path("a.exr") +
+                               " -o " + path("a.png"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const Image noisy = readImage(path("a.exr")), denoised = readImage(path("a.denoised.exr"));
+    ASSERT_TRUE(denoised.sameSize(noisy));
+    EXPECT_TRUE(denoised.allFinite());
+    EXPECT_NE(denoised.rgb, noisy.rgb);
+    EXPECT_TRUE(std::filesystem::exists(path("a.denoised.png")));
+    EXPECT_EQ(readImageMetadata(path("a.denoised.exr")).entries.at("caustica.denoiser"), "nlm");
+    // The noisy EXR carries the guides the filter used, variance included (path renders passes).
+    const std::string aovs = readImageMetadata(path("a.exr")).entries.at("caustica.aovs");
+    for (const char* guide : {"denoise.albedo:albedo", "denoise.normal:sh_normal", "denoise.depth:depth",
+                              "denoise.variance:variance"})
+        EXPECT_NE(aovs.find(guide), std::string::npos) << aovs;
+}
+
+TEST_F(RenderDenoiseCli, PhotonMappingGetsGuidesWithoutVariance) {
+    const CliResult r = runCli("render " + box + " --integrator sppm --res 24x16 --spp 2 -q --denoise nlm -o " +
+                               path("s.exr"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(readImage(path("s.denoised.exr")).allFinite());
+    const std::string aovs = readImageMetadata(path("s.exr")).entries.at("caustica.aovs");
+    EXPECT_EQ(aovs.find("variance"), std::string::npos) << aovs;
+}
+
+TEST_F(RenderDenoiseCli, BadCombinationsAreRefusedBeforeRendering) {
+    CliResult r = runCli("render " + box + " --res 8x8 --spp 1 -q --denoise fancy -o " + path("b.exr"));
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.output.find("--denoise"), std::string::npos) << r.output;
+    r = runCli("render " + box + " --res 8x8 --spp 1 -q --oidn-library /x.so -o " + path("b.exr"));
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.output.find("--oidn-library needs --denoise oidn"), std::string::npos) << r.output;
+    r = runCli("render " + box + " --res 8x8 --spp 1 -q --denoise oidn --oidn-library " + path("none.so") + " -o " +
+               path("b.exr"));
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.output.find("none.so"), std::string::npos) << r.output;
+    r = runCli("render " + box + " --res 8x8 --spp 1 -q --denoise nlm --stereo off-axis -o " + path("b.exr"));
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.output.find("stereo"), std::string::npos) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(path("b.exr")));
+}
+
+}  // namespace
+}  // namespace caustica::test

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "caustica/accel/accel.h"
+#include "caustica/distributed/communicator.h"
 #include "caustica/integrators/integrator_params.h"
 #include "caustica/parallel/device.h"
 #include "caustica/render/integrator_session.h"
@@ -27,6 +28,9 @@ struct SessionContext {
     /// The identity of the checkpoint being resumed, or nullptr: settings left to a default that
     /// depends on the device (mlt's chain count) are taken from it.
     const RenderIdentity* resumeFrom = nullptr;
+    /// The ranks this render is spread over (distributed/communicator.h); a single process is
+    /// rank 0 of 1. Every rank makes the same session and calls step() in lockstep.
+    Communicator& comm = singleProcess();
 };
 
 struct IntegratorEntry {

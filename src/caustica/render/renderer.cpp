@@ -61,8 +61,9 @@ void applyResolution(Scene& scene, int w, int h) {
     scene.camera.cropX = scene.camera.cropY = 0;  // the whole image at the new size, no crop
 }
 
-Renderer::Renderer(Scene scene, const RenderRequest& request, const CheckpointHeader* resumeFrom)
-    : scene_(std::make_unique<Scene>(std::move(scene))) {
+Renderer::Renderer(Scene scene, const RenderRequest& request, const CheckpointHeader* resumeFrom,
+                   Communicator& comm)
+    : scene_(std::make_unique<Scene>(std::move(scene))), comm_(&comm) {
     Scene& s = *scene_;
     if (request.resolution) applyResolution(s, request.resolution->first, request.resolution->second);
     applyStereo(s, request.stereo);  // after the resolution: the rig doubles the film's width
@@ -93,7 +94,7 @@ Renderer::Renderer(Scene scene, const RenderRequest& request, const CheckpointHe
     accel_ = std::make_unique<Accel>(s, accelKind);
     accelSeconds_ = secondsSince(buildStart);
     const SessionContext context{s, *accel_, device_, seed_, request, params,
-                                 resumeFrom ? &resumeFrom->identity : nullptr};
+                                 resumeFrom ? &resumeFrom->identity : nullptr, comm};
     session_ = entry.make(context);
     // An integrator's own pass count (max_passes) replaces the scene's sample count, and caps a
     // time budget, unless the request names a sample count.

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "caustica/accel/accel.h"
+#include "caustica/distributed/communicator.h"
 #include "caustica/film/aov_layers.h"
 #include "caustica/film/image.h"
 #include "caustica/parallel/device.h"
@@ -54,8 +55,11 @@ public:
     /// Resolves `request` against `scene` (integrator, seed, resolution, device, budgets), builds
     /// the ray tracer and the integrator's session. `resumeFrom`: the header of the checkpoint
     /// this render will load, so that settings left to device-dependent defaults take the
-    /// checkpoint's. Throws caustica::Error (one line) for anything that cannot run.
-    Renderer(Scene scene, const RenderRequest& request, const CheckpointHeader* resumeFrom = nullptr);
+    /// checkpoint's. Throws caustica::Error (one line) for anything that cannot run. `comm`: the
+    /// ranks the render is spread over; every rank constructs its Renderer with the same scene
+    /// and request and calls step() in lockstep (distributed/communicator.h).
+    Renderer(Scene scene, const RenderRequest& request, const CheckpointHeader* resumeFrom = nullptr,
+             Communicator& comm = singleProcess());
     ~Renderer();
     Renderer(const Renderer&) = delete;
     Renderer& operator=(const Renderer&) = delete;
@@ -64,6 +68,7 @@ public:
     const std::string& integrator() const { return integrator_; }
     uint64_t seed() const { return seed_; }
     const Device& device() const { return device_; }
+    Communicator& comm() const { return *comm_; }
     const char* accelName() const;
     double accelBuildSeconds() const { return accelSeconds_; }
     /// Lines describing the render for its start ("scene: N triangles ...", "device: ...").
@@ -97,6 +102,7 @@ public:
 
 private:
     std::unique_ptr<Scene> scene_;
+    Communicator* comm_;
     std::unique_ptr<Accel> accel_;
     std::unique_ptr<IntegratorSession> session_;
     std::unique_ptr<AovSession> aov_;

@@ -1,8 +1,10 @@
 // caustica — command line entry point: render, compare, info, denoise.
 #include <cstdio>
 #include <exception>
+#include <memory>
 
 #include "commands.h"
+#include "ranks.h"
 #include "caustica/util/error.h"
 #ifdef CAUSTICA_WITH_CUDA
 #include "cuda/cuda_backend.h"
@@ -12,18 +14,27 @@ int main(int argc, char** argv) {
 #ifdef CAUSTICA_WITH_CUDA
     caustica::registerCudaBackend();  // installs the GPU backend's function table; touches no GPU
 #endif
+    // Under mpirun / srun (and built with MPI) every rank runs the same command; MPI starts here.
+    std::unique_ptr<caustica::cli::Ranks> ranks;
+    try {
+        ranks = std::make_unique<caustica::cli::Ranks>(argc, argv);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "caustica: error: %s\n", e.what());
+        return 1;
+    }
     CLI::App app{"caustica — a physically based light-transport renderer for the hard light"};
     app.require_subcommand(1);
     app.set_version_flag("--version", "caustica 0.1.0");
     std::function<int()> run;
-    auto render = caustica::cli::addRenderCommand(app);
+    auto render = caustica::cli::addRenderCommand(app, ranks->comm());
     auto compare = caustica::cli::addCompareCommand(app);
     auto info = caustica::cli::addInfoCommand(app);
     auto denoise = caustica::cli::addDenoiseCommand(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        return app.exit(e);
+        // Every rank parses the same arguments: rank 0 alone prints the help or the complaint.
+        return ranks->comm().isRoot() ? app.exit(e) : e.get_exit_code();
     }
     try {
         if (app.got_subcommand("render")) return render();
@@ -31,8 +42,7 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("info")) return info();
         if (app.got_subcommand("denoise")) return denoise();
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "caustica: error: %s\n", e.what());
-        return 1;
+        return ranks->fail(e);  // over several ranks: ends them all, whatever they wait for
     }
     return 1;
 }

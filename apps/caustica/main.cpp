@@ -2,6 +2,7 @@
 #include <cstdio>
 #include <exception>
 #include <memory>
+#include <string>
 
 #include "commands.h"
 #include "ranks.h"
@@ -30,11 +31,24 @@ int main(int argc, char** argv) {
     auto compare = caustica::cli::addCompareCommand(app);
     auto info = caustica::cli::addInfoCommand(app);
     auto denoise = caustica::cli::addDenoiseCommand(app);
+    caustica::Communicator& comm = ranks->comm();
+    int parseExit = -1;
+    std::string parseFailure;  // over several ranks: agreed, since one rank may lack a file the others see
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        // Every rank parses the same arguments: rank 0 alone prints the help or the complaint.
-        return ranks->comm().isRoot() ? app.exit(e) : e.get_exit_code();
+        if (comm.size() == 1) return app.exit(e);
+        // Rank 0 prints the help or the complaint; another rank prints only its own complaint.
+        parseExit = comm.isRoot() ? app.exit(e) : e.get_exit_code();
+        if (!comm.isRoot() && parseExit != 0) std::fprintf(stderr, "caustica: error: rank %d: %s\n", comm.rank(), e.what());
+        parseFailure = parseExit == 0 ? "help" : e.what();
+    }
+    if (comm.size() > 1) {
+        if (const std::string first = comm.firstError(parseFailure); !first.empty()) {
+            if (parseExit >= 0) return parseExit;
+            std::fprintf(stderr, "caustica: error: %s\n", first.c_str());
+            return 1;
+        }
     }
     try {
         if (app.got_subcommand("render")) return render();

@@ -6,7 +6,9 @@ Every case is one `mpirun -n N caustica render` (N = 1 included, so the launcher
 the same in every row) with --stats-json; the figures come from rank 0's statistics:
 `run_seconds` (rendering only: scene load and acceleration build excluded), the speedup
 against the 1-rank row of the same integrator, and `bytes_sent_per_iteration` (rank 0's bytes
-handed to MPI per step / iteration, where the integrator reports it). Ranks beyond the cores are
+handed to MPI per step / iteration, where the integrator reports it). `cpu_seconds` is the CPU
+time of mpirun and all ranks (start, load and waiting included): on a machine shared with other
+work it shows whether the ranks split the work without adding any, where wall times cannot. Ranks beyond the cores are
 oversubscribed (--oversubscribe): such rows measure overhead, not scaling.
 
     bench/mpi_scaling.py scenes/cornell-box/scene.xml --res 128x96 --threads 1 --ranks 1,2,4 \\
@@ -19,6 +21,7 @@ A case is INTEGRATOR[:EXTRA,ARGS] (commas separate the extra arguments). Writes 
 import argparse
 import json
 import os
+import resource
 import shlex
 import shutil
 import subprocess
@@ -43,13 +46,14 @@ def render(mpirun, binary, scene, ranks, threads, res, args, work):
     cmd = [mpirun, '--allow-run-as-root', '--oversubscribe', '--mca', 'btl_vader_single_copy_mechanism', 'none',
            '-n', str(ranks), binary, 'render', scene, '--threads', str(threads), '-q', '--overwrite',
            '-o', os.path.join(work, 'image.exr'), '--stats-json', stats] + (['--res', res] if res else []) + args
-    start = time.monotonic()
+    start, before = time.monotonic(), resource.getrusage(resource.RUSAGE_CHILDREN)
     done = subprocess.run(cmd, capture_output=True, text=True)
-    wall = time.monotonic() - start
+    wall, after = time.monotonic() - start, resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime)
     if done.returncode != 0:
         sys.exit('failed: ' + ' '.join(shlex.quote(c) for c in cmd) + '\n' + done.stdout + done.stderr)
     with open(stats) as f:
-        return json.load(f), wall
+        return json.load(f), wall, cpu
 
 
 def main():
@@ -73,13 +77,14 @@ def main():
             baseline = None
             for n in ranks:
                 runs = [render(a.mpirun, a.binary, a.scene, n, a.threads, a.res, args, work) for _ in range(a.repeat)]
-                best = min(s['run_seconds'] for s, _ in runs)
+                best = min(s['run_seconds'] for s, _, _ in runs)
                 baseline = baseline or best
-                stats, wall = runs[0]
+                stats, wall, _ = runs[0]
                 row = {'case': case, 'integrator': name, 'ranks': n, 'threads_per_rank': a.threads,
                        'oversubscribed': n * a.threads > cores, 'spp': stats['spp'],
                        'best_run_seconds': round(best, 4), 'wall_seconds': round(wall, 3),
                        'speedup': round(baseline / best, 3) if best > 0 else 0,
+                       'cpu_seconds': round(min(c for _, _, c in runs), 3),
                        'samples': stats['samples'],
                        'bytes_sent_per_iteration': stats.get('bytes_sent_per_iteration', 0),
                        'bytes_sent': stats.get('bytes_sent', 0)}

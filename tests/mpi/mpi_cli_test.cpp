@@ -16,10 +16,12 @@ namespace caustica::test {
 namespace {
 
 const std::string kScene = std::string(CAUSTICA_SOURCE_DIR) + "/scenes/cornell-box/scene.xml";
-// `timeout`: a hang fails the test instead of blocking CI; vader's single copy needs ptrace,
-// which containers often forbid.
-const std::string kMpirun = std::string("timeout 60 ") + CAUSTICA_MPIEXEC +
-                            " --allow-run-as-root --oversubscribe --mca btl_vader_single_copy_mechanism none";
+// `timeout`: a hang fails the test instead of blocking CI. OpenMPI 4 settings for containers, as
+// environment variables (another MPI ignores them): start the ranks without ssh (plm isolated: one
+// host), and no single-copy transfers (they need ptrace, which containers often forbid).
+const std::string kMpirun = std::string("OMPI_MCA_plm=isolated OMPI_MCA_btl_vader_single_copy_mechanism=none "
+                                        "timeout 60 ") +
+                            CAUSTICA_MPIEXEC + " --allow-run-as-root --oversubscribe";
 const std::string kRender = std::string(CAUSTICA_BINARY) + " render ";
 const std::string kSmall = " --res 24x18 --spp-per-pass 2 --threads 1 -q ";
 

@@ -3,11 +3,12 @@
 // payload is the film's sums.
 //
 // Over N ranks (distributed/communicator.h) a step is N consecutive passes of the single-process
-// render: rank r renders pass r (the same sample indices, hence the same random numbers), the
-// ranks all-gather the passes' samples and every rank adds all N passes to its film in pass order,
-// as one process would have added them one step after another. The film is thus the same bits on
-// every rank and the image of N ranks byte-identical to one process's at the same spp; a
-// checkpoint of any rank is the whole render's. Cost: 20 bytes per sample sent by its rank.
+// render: rank r renders pass r (the same sample indices, hence the same random numbers) and
+// filters it into per-pixel sums (Film::passSums, the floats addPass would add); the ranks
+// all-gather the sums and every rank adds all N to its film in pass order, as one process would
+// have added them one step after another. The film is thus the same bits on every rank and the
+// image of N ranks byte-identical to one process's at the same spp; a checkpoint of any rank is
+// the whole render's. Cost: 16 bytes per pixel per pass, sent by the pass's rank to each other.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -99,9 +100,9 @@ private:
     }
 
     /// One step over the ranks: see the file comment. A rank whose pass fails sends its message
-    /// instead of samples, and every rank then throws it (AgreedError): no rank waits alone.
+    /// instead of its sums, and every rank then throws it (AgreedError): no rank waits alone.
     void stepOverRanks(double samplesLeft) {
-        static_assert(std::is_trivially_copyable_v<PixelSample>);
+        static_assert(std::is_trivially_copyable_v<PassPixelSums>);
         const int ranks = comm_.size(), me = comm_.rank();
         std::vector<int> k(size_t(ranks), 0), first(size_t(ranks), 0);  // the N passes of this step
         const int spp0 = int(film_.samplesPerPixel());
@@ -113,14 +114,20 @@ private:
             first[size_t(r)] = spp;
             spp += k[size_t(r)];
         }
-        std::vector<uint8_t> message(1, 0);  // [0] = 0: samples follow; 1: an error message follows
+        // [0] = 0: the pass's invalid-sample count (8 bytes) and per-pixel sums follow; 1: an error
+        // message follows.
+        std::vector<uint8_t> message(1, 0);
         try {
             if (k[size_t(me)] > 0) {
                 if (k[size_t(me)] != pass_.samplesPerPixel) pass_ = SamplePass(film_.width(), film_.height(), k[size_t(me)]);
                 counters_.rays += driver_->render(seed_, first[size_t(me)], pass_);
                 counters_.samples += uint64_t(film_.width()) * uint64_t(film_.height()) * uint64_t(k[size_t(me)]);
-                const auto* bytes = reinterpret_cast<const uint8_t*>(pass_.samples.data());
-                message.insert(message.end(), bytes, bytes + pass_.samples.size() * sizeof(PixelSample));
+                uint64_t invalid = 0;
+                const std::vector<PassPixelSums> sums = film_.passSums(pass_, invalid);
+                const auto* bytes = reinterpret_cast<const uint8_t*>(sums.data());
+                message.resize(1 + sizeof invalid);
+                std::memcpy(message.data() + 1, &invalid, sizeof invalid);
+                message.insert(message.end(), bytes, bytes + sums.size() * sizeof(PassPixelSums));
             }
         } catch (const std::exception& e) {
             const std::string text = failureMessage(e);
@@ -134,17 +141,16 @@ private:
                                   (passes[size_t(r)].empty() ? std::string("no pass")
                                                              : std::string(passes[size_t(r)].begin() + 1,
                                                                            passes[size_t(r)].end())));
+        // Every rank adds the N passes in pass order, as one process adds them step after step.
+        std::vector<PassPixelSums> sums(size_t(film_.width()) * size_t(film_.height()));
         for (int r = 0; r < ranks && k[size_t(r)] > 0; ++r) {
-            if (r == me) {
-                film_.addPass(pass_);
-                continue;
-            }
-            SamplePass other(film_.width(), film_.height(), k[size_t(r)]);
             const std::vector<uint8_t>& bytes = passes[size_t(r)];
-            if (bytes.size() != 1 + other.samples.size() * sizeof(PixelSample))
-                throw AgreedError("rank " + std::to_string(r) + " sent a pass of another size");
-            std::memcpy(other.samples.data(), bytes.data() + 1, bytes.size() - 1);
-            film_.addPass(other);
+            uint64_t invalid = 0;
+            if (bytes.size() != 1 + sizeof invalid + sums.size() * sizeof(PassPixelSums))
+                throw AgreedError("rank " + std::to_string(r) + " sent the sums of another film size");
+            std::memcpy(&invalid, bytes.data() + 1, sizeof invalid);
+            std::memcpy(sums.data(), bytes.data() + 1 + sizeof invalid, sums.size() * sizeof(PassPixelSums));
+            film_.addPassSums(sums, k[size_t(r)], invalid);
         }
         ++steps_;
     }

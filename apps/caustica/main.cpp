@@ -50,6 +50,8 @@ int main(int argc, char** argv) {
             return 1;
         }
     }
+    // Only `render` is spread over ranks; another command under mpirun runs once, on rank 0.
+    if (comm.size() > 1 && !app.got_subcommand("render") && !comm.isRoot()) return 0;
     try {
         if (app.got_subcommand("render")) return render();
         if (app.got_subcommand("compare")) return compare();

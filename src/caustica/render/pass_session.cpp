@@ -85,7 +85,7 @@ public:
     const SamplePass* lastPass() const override { return &pass_; }
     std::vector<std::pair<std::string, std::string>> statsJson() const override {
         if (comm_.size() == 1) return {};
-        // This rank's bytes (the root writes the statistics): its passes' samples to every other rank.
+        // This rank's bytes (the root writes the statistics): its passes' sums to every other rank.
         return {{"bytes_sent", std::to_string(comm_.bytesSent())},
                 {"bytes_sent_per_iteration", std::to_string(steps_ ? comm_.bytesSent() / steps_ : 0)}};
     }

@@ -262,6 +262,10 @@ size_t peakBytes() {
     return cudaMemoryCounters().peak;
 }
 
+void setDevice(int index) {
+    CA_CUDA_CHECK(cudaSetDevice(index));
+}
+
 const GpuBackend kCudaBackend = {
     .name = "CUDA",
     .deviceCount = &deviceCount,
@@ -281,6 +285,7 @@ const GpuBackend kCudaBackend = {
     .peakBytes = &peakBytes,
     .resetPeakBytes = &resetCudaPeakBytes,
     .describe = &cudaDeviceDescription,
+    .setDevice = &setDevice,
 };
 
 }  // namespace

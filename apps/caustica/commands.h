@@ -3,10 +3,13 @@
 
 #include <CLI/CLI.hpp>
 
+#include "caustica/distributed/communicator.h"
+
 namespace caustica::cli {
 
 /// Each registers its options on `app` and returns the function to run when it was chosen.
-std::function<int()> addRenderCommand(CLI::App& app);
+/// `render` renders with the ranks of `comm` (ranks.h): every rank runs it.
+std::function<int()> addRenderCommand(CLI::App& app, Communicator& comm);
 std::function<int()> addCompareCommand(CLI::App& app);
 std::function<int()> addInfoCommand(CLI::App& app);
 std::function<int()> addDenoiseCommand(CLI::App& app);

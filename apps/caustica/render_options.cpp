@@ -45,6 +45,8 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
         ->check(CLI::IsMember({"megakernel", "wavefront"}));
     cmd.add_option("--device", r.device, "Where to render: cpu, cuda, or auto (the GPU when this binary has the "
                    "CUDA backend and a GPU is present, else the CPU)")->check(CLI::IsMember({"cpu", "cuda", "auto"}));
+    cmd.add_option("--gpu", r.gpu, "The GPU to render on with --device cuda (default: under mpirun/srun the rank's "
+                   "local rank modulo the host's GPUs, one GPU per rank; else GPU 0)")->check(CLI::Range(0, 1023));
     cmd.add_option("--gpu-mode", r.gpuMode, "Path tracer execution on the GPU: megakernel or wavefront")
         ->check(CLI::IsMember({"megakernel", "wavefront"}));
     cmd.add_option("--aov", r.aovs, "AOVs written as layers of the .exr output, Mitsuba's aovs list NAME:TYPE,... "

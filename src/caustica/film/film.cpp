@@ -60,7 +60,7 @@ void Film::setEyeWidth(int eyeWidth) {
     eyeWidth_ = eyeWidth;
 }
 
-void Film::addPass(const SamplePass& pass) {
+void Film::checkPass(const SamplePass& pass) const {
     if (pass.width != width_ || pass.height != height_)
         throw Error("sample pass " + sizeString(pass.width, pass.height) + " does not match film " +
                     sizeString(width_, height_));
@@ -68,6 +68,47 @@ void Film::addPass(const SamplePass& pass) {
         pass.samples.size() != sums_.size() * size_t(pass.samplesPerPixel))
         throw Error("sample pass holds " + std::to_string(pass.samples.size()) +
                     " samples, expected " + std::to_string(pass.samplesPerPixel) + " per pixel");
+}
+
+std::vector<PassPixelSums> Film::passSums(const SamplePass& pass, uint64_t& invalidSamples) {
+    checkPass(pass);
+    std::vector<PassPixelSums> out(sums_.size());
+    invalidSamples = 0;
+    if (pass.samplesPerPixel == 0) return out;
+    FilmSplatView view;
+    view.grid = gatherGrid(width_, height_, pass.samplesPerPixel, filter_, weightScratch_, invalidScratch_,
+                           eyeWidth_);
+    view.samples = pass.samples.data();
+    // The CPU's kernels (out is host memory), the same gatherSums as gatherPixel's: the same floats.
+    parallelFor(Device::cpu(), "film_sample_weights", sums_.size(),
+                [view](size_t pixel) { sampleWeights(view, pixel); });
+    PassPixelSums* o = out.data();
+    parallelFor(Device::cpu(), "film_pass_sums", sums_.size(), [view, o](size_t pixel) {
+        float sum[3], wSum;
+        gatherSums<3>(view.grid, view, pixel, sum, wSum);
+        o[pixel] = PassPixelSums{sum[0], sum[1], sum[2], wSum};
+    });
+    invalidSamples = std::accumulate(invalidScratch_.begin(), invalidScratch_.end(), uint64_t(0));
+    return out;
+}
+
+void Film::addPassSums(const std::vector<PassPixelSums>& sums, int samplesPerPixel, uint64_t invalidSamples) {
+    if (sums.size() != sums_.size() || samplesPerPixel < 0)
+        throw Error("pass sums of " + std::to_string(sums.size()) + " pixels do not match film " +
+                    sizeString(width_, height_));
+    if (samplesPerPixel == 0) return;
+    for (size_t i = 0; i < sums_.size(); ++i) {  // as gatherPixel adds: float to double
+        sums_[i].r += sums[i].r;
+        sums_[i].g += sums[i].g;
+        sums_[i].b += sums[i].b;
+        sums_[i].w += sums[i].w;
+    }
+    invalidSamples_ += invalidSamples;
+    samplesPerPixel_ += uint64_t(samplesPerPixel);
+}
+
+void Film::addPass(const SamplePass& pass) {
+    checkPass(pass);
     if (pass.samplesPerPixel == 0) return;
 
     FilmSplatView view;

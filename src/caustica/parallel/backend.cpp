@@ -61,6 +61,15 @@ std::string gpuDescription() {
     return backend ? backend->describe() : std::string();
 }
 
+void selectGpu(int index) {
+    const GpuBackend& backend = requireGpuBackend("--gpu");
+    const int count = backend.deviceCount();
+    if (index < 0 || index >= count)
+        throw Error("--gpu " + std::to_string(index) + ": no such GPU (this host has " + std::to_string(count) + ")");
+    if (!backend.setDevice) throw Error("--gpu: the GPU backend cannot choose a GPU");
+    backend.setDevice(index);
+}
+
 namespace detail {
 
 [[noreturn]] void throwHostLaunchOnGpu(const char* name) {

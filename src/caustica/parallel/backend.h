@@ -41,6 +41,9 @@ struct GpuBackend {
     void (*resetPeakBytes)() = nullptr;
     /// "NVIDIA H200 (sm_90, 139.8 GiB)"; "" without a GPU. Never throws.
     std::string (*describe)() = nullptr;
+    /// Makes GPU `index` (0 .. deviceCount()-1) the current one of this process (cudaSetDevice):
+    /// one GPU per MPI rank. Throws caustica::Error.
+    void (*setDevice)(int index) = nullptr;
 };
 
 /// Installs (or with nullptr removes) the GPU backend. The table must outlive its use.
@@ -56,6 +59,9 @@ bool gpuMemoryInfo(size_t& freeBytes, size_t& totalBytes);
 size_t gpuPeakBytes();
 void resetGpuPeakBytes();
 std::string gpuDescription();
+/// Makes GPU `index` the one this process renders on, before anything is allocated on a GPU;
+/// throws caustica::Error (one line) without a backend or for an index it does not have.
+void selectGpu(int index);
 
 namespace detail {
 /// Raw memory on a device: 64-byte aligned host memory on the CPU, cudaMalloc on CUDA.

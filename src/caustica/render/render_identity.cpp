@@ -68,4 +68,17 @@ std::string firstIdentityDifference(const RenderIdentity& saved, const RenderIde
     return {};
 }
 
+IdentityEntry ranksIdentityEntry(int ranks) { return identityEntry("ranks", std::to_string(ranks)); }
+
+std::string rankCountMismatch(const RenderIdentity& saved, int ranks) {
+    std::string written = "1";
+    for (const IdentityEntry& e : saved)
+        if (e.name == "ranks") written = e.value;
+    if (written == std::to_string(ranks)) return "";
+    auto count = [](const std::string& n) { return n + (n == "1" ? " process" : " MPI ranks"); };
+    return "written by a render over " + count(written) + ", resumed with " + count(std::to_string(ranks)) +
+           ": resume it with the same number (" +
+           (written == "1" ? std::string("a single process") : "mpirun -n " + written) + ")";
+}
+
 }  // namespace caustica

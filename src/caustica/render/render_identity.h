@@ -34,6 +34,13 @@ std::string identityNumber(float value);
 /// checkpoint never resumes a stereo render, nor the reverse).
 IdentityEntry stereoIdentityEntry(const StereoSettings& stereo);
 
+/// A render spread over `ranks` > 1 ranks (MPI) names their number: its checkpoint resumes only
+/// with as many ranks. A single process adds no entry, so earlier checkpoints still resume.
+IdentityEntry ranksIdentityEntry(int ranks);
+/// "" when the checkpoint identity `saved` was written by `ranks` ranks (no entry: 1), else the one
+/// line that refuses the resume, naming both counts.
+std::string rankCountMismatch(const RenderIdentity& saved, int ranks);
+
 /// The first entry of `saved` and `current` that differs, as "NAME differs (written for VALUE;
 /// now VALUE)" ("... (not in this render)" / "(not in the checkpoint)" when one list is longer);
 /// empty when they agree.

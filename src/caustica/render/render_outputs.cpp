@@ -64,17 +64,18 @@ void writeImageThroughTemporary(const std::string& path, const std::function<voi
 }
 
 ImageMetadata renderImageMetadata(const Renderer& r) {
-    const RenderStats stats = r.stats();
+    // Whole-render figures, the same on every rank: no collective (rank 0 alone writes images).
+    const RenderProgress progress = r.progress();
     ImageMetadata meta;
     std::ostringstream spp;
-    spp << r.progress().samplesPerPixel;
+    spp << progress.samplesPerPixel;
     meta.entries["caustica.spp"] = spp.str();
-    meta.entries["caustica.renderTime"] = std::to_string(stats.seconds);
+    meta.entries["caustica.renderTime"] = std::to_string(progress.seconds);
     meta.entries["caustica.integrator"] = r.integrator();
     meta.entries["caustica.accel"] = r.accelName();
     meta.entries["caustica.seed"] = std::to_string(r.seed());
     meta.entries["caustica.scene"] = r.scene().sourceFile;
-    meta.entries["caustica.invalidSamples"] = std::to_string(stats.invalidSamples);
+    meta.entries["caustica.invalidSamples"] = std::to_string(r.session().counters().invalidSamples);
     return meta;
 }
 
@@ -113,7 +114,8 @@ void writeRenderImages(const std::vector<std::string>& paths, const Image& image
 }
 
 void printRenderSummary(const Renderer& r, std::FILE* out) {
-    const RenderStats s = r.stats();
+    const RenderStats s = r.stats();  // collective over ranks: every rank calls, out == nullptr prints nothing
+    if (!out) return;
     const double run = r.runSeconds();
     std::fprintf(out, "time        %s (%.3f s)", ProgressReporter::formatDuration(s.seconds).c_str(), s.seconds);
     if (std::abs(run - s.seconds) > 1e-9) std::fprintf(out, ", of which this run %.3f s", run);
@@ -145,6 +147,9 @@ std::string jsonString(const std::string& s) {
 void writeRenderStatsJson(const std::string& path, const Renderer& r, bool cancelled) {
     const RenderStats s = r.stats();
     const double run = r.runSeconds();
+    const int ranks = r.comm().size();
+    const std::vector<RankStats> perRank = ranks > 1 ? r.rankStats() : std::vector<RankStats>{};
+    if (!r.comm().isRoot()) return;  // collective over ranks: rank 0 writes
     writeFileAtomically(path, [&](std::ostream& f) {
         f << "{\n"
           << "  \"scene\": " << jsonString(r.scene().sourceFile) << ",\n"
@@ -162,6 +167,13 @@ void writeRenderStatsJson(const std::string& path, const Renderer& r, bool cance
           << "  \"rays_per_second\": " << (run > 0 ? double(s.rays) / run : 0) << ",\n"
           << "  \"invalid_samples\": " << s.invalidSamples << ",\n"
           << "  \"cancelled\": " << (cancelled ? "true" : "false");
+        if (ranks > 1) {  // the totals above are summed over the ranks; each rank's share:
+            f << ",\n  \"ranks\": " << ranks << ",\n  \"per_rank\": [";
+            for (size_t i = 0; i < perRank.size(); ++i)
+                f << (i ? ", " : "") << "{\"rank\": " << i << ", \"samples\": " << perRank[i].samples
+                  << ", \"rays\": " << perRank[i].rays << ", \"seconds\": " << perRank[i].seconds << "}";
+            f << "]";
+        }
         for (const auto& [key, value] : r.session().statsJson()) f << ",\n  \"" << key << "\": " << value;
         f << "\n}\n";
     });

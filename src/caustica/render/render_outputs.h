@@ -37,8 +37,12 @@ ImageMetadata renderImageMetadata(const Renderer& renderer);
 /// when asked, the anaglyph.
 void writeRenderImages(const std::vector<std::string>& paths, const Image& image, const Renderer& renderer,
                        const StereoOutputs& stereo = {});
+/// Collective over the ranks of a distributed render (Renderer::stats): every rank calls it; a
+/// null `out` prints nothing.
 void printRenderSummary(const Renderer& renderer, std::FILE* out);
-/// The statistics as JSON (the integrator's own entries included), written atomically.
+/// The statistics as JSON (the integrator's own entries included), written atomically; over
+/// several ranks also "ranks" and "per_rank" (samples, rays, seconds). Collective: every rank
+/// calls it, rank 0 writes.
 void writeRenderStatsJson(const std::string& path, const Renderer& renderer, bool cancelled);
 
 }  // namespace caustica

@@ -26,6 +26,9 @@ struct RenderRequest {
     std::optional<std::pair<int, int>> resolution;  // replaces the film's size (and any crop)
     std::map<std::string, std::string> defines;     // the -D values the scene was loaded with
     std::string device = "auto";    // cpu | cuda | auto
+    /// The GPU to render on (0..count-1); -1: under an MPI launcher, the rank's local rank modulo
+    /// the host's GPUs (one GPU per rank), else the CUDA default (GPU 0 or CUDA_VISIBLE_DEVICES').
+    int gpu = -1;
     AccelKind accel = AccelKind::Embree;  // the CPU's ray tracer (a GPU traces the own BVH)
     std::string pathMode = "megakernel";  // CPU path tracer: megakernel | wavefront
     std::string gpuMode = "megakernel";   // GPU path tracer: megakernel | wavefront

@@ -45,11 +45,20 @@ struct RunResult {
 /// rules hold: a `checkpoint` that exists needs `resume` (continue) or `overwrite` (start over);
 /// `resume` needs one. Returns the checkpoint's header when resuming. Throws caustica::Error.
 std::optional<CheckpointHeader> prepareRun(const RunControl& control);
+/// The same for a render over the ranks of `comm`, collective: rank 0 checks (it alone writes)
+/// and broadcasts the header; a refusal is every rank's (AgreedError, rank 0's message).
+std::optional<CheckpointHeader> prepareRun(const RunControl& control, Communicator& comm);
 
 /// Loads the checkpoint when resuming (a mismatch throws and leaves it untouched), renders until
 /// the budget is spent or an interrupt, writes images (and a checkpoint every checkpointEvery
 /// seconds), and at the end the images, the statistics JSON and, when interrupted, the
 /// checkpoint. A finished render removes its checkpoint.
+///
+/// Collective over the renderer's ranks (Renderer::comm): every rank calls it. The ranks agree
+/// after every step on stopping (the budget as rank 0's clock sees it; Ctrl-C or SIGTERM on any
+/// rank; `cancel` on any) and on checkpoints, so they all step equally often; rank 0 alone prints
+/// the progress and writes images, checkpoint and statistics (result.written is rank 0's list on
+/// every rank).
 RunResult runRender(Renderer& renderer, const RunControl& control);
 
 }  // namespace caustica

@@ -4,8 +4,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <fstream>
+#include <iterator>
+#include <sstream>
 
+#include "caustica/distributed/agreed_error.h"
+#include "caustica/distributed/launch_environment.h"
+#include "caustica/parallel/backend.h"
 #include "caustica/parallel/device_select.h"
 #include "caustica/render/aov_session.h"
 #include "caustica/render/integrator_registry.h"
@@ -24,7 +30,7 @@ double secondsSince(Clock::time_point start) {
 }
 
 /// The scene's part of the identity: input files by content, -D values, film size and crop.
-RenderIdentity sceneIdentity(const Scene& scene, const RenderRequest& request, uint64_t seed) {
+RenderIdentity sceneIdentity(const Scene& scene, const RenderRequest& request, uint64_t seed, int ranks) {
     RenderIdentity id;
     // A scene built in memory (tests, scripts) has no file: its arrays are the caller's business.
     id.push_back(scene.sourceFile.empty() ? identityEntry("scene file", "none (built in memory)")
@@ -45,7 +51,19 @@ RenderIdentity sceneIdentity(const Scene& scene, const RenderRequest& request, u
     id.push_back(identityEntry("seed", std::to_string(seed)));
     // Only a stereo render names its rig, so mono checkpoints of earlier versions still resume.
     if (request.stereo.mode != StereoMode::Off) id.push_back(stereoIdentityEntry(request.stereo));
+    if (ranks > 1) id.push_back(ranksIdentityEntry(ranks));  // likewise: only a render over ranks
     return id;
+}
+
+/// The GPU of this process: the request's, else under an MPI launcher the local rank's (one GPU
+/// per rank, round robin when a host has more ranks than GPUs), else the CUDA default.
+void chooseGpu(const RenderRequest& request, const Communicator& comm, int gpuCount) {
+    int index = request.gpu;
+    if (index < 0 && comm.size() > 1 && gpuCount > 0) {
+        const int local = localRankFromEnvironment();
+        index = (local >= 0 ? local : comm.rank()) % gpuCount;
+    }
+    if (index >= 0) selectGpu(index);
 }
 
 }  // namespace
@@ -78,7 +96,9 @@ Renderer::Renderer(Scene scene, const RenderRequest& request, const CheckpointHe
 
     // The device: `cuda` without a GPU fails here; `auto` falls back to the CPU for what the GPU
     // does not run.
-    device_ = Device{selectDevice(request.device, currentDeviceAvailability())};
+    const DeviceAvailability available = currentDeviceAvailability();
+    device_ = Device{selectDevice(request.device, available)};
+    if (request.gpu >= 0 && device_.isCpu()) throw Error("--gpu needs --device cuda (or auto with a GPU)");
     if (!device_.isCpu()) {
         IntegratorParams probe = params;
         if (const std::string refusal = entry.gpuRefusal(probe); !refusal.empty()) {
@@ -86,10 +106,11 @@ Renderer::Renderer(Scene scene, const RenderRequest& request, const CheckpointHe
             device_ = Device::cpu();
         }
     }
+    if (!device_.isCpu()) chooseGpu(request, comm, available.gpuCount);
     const AccelKind accelKind = device_.isCpu() ? request.accel : AccelKind::Bvh;  // a GPU traces the own BVH
     if (s.lights.empty())
         warnings_.push_back(s.sourceFile + ": the scene has no emitter: the image will be black");
-    identity_ = sceneIdentity(s, request, seed_);
+    identity_ = sceneIdentity(s, request, seed_, comm.size());
     const auto buildStart = Clock::now();
     accel_ = std::make_unique<Accel>(s, accelKind);
     accelSeconds_ = secondsSince(buildStart);
@@ -113,6 +134,10 @@ Renderer::Renderer(Scene scene, const RenderRequest& request, const CheckpointHe
         // than drop them.
         if (s.film.eyeWidth > 0)
             throw Error(where + ": AOVs (and the denoiser's guides) of a stereo render are not supported");
+        // The AOV session takes this rank's pass only; the ranks' AOVs are not gathered yet.
+        if (comm.size() > 1)
+            throw Error(where + ": AOVs (and the denoiser's guides) of a render over several MPI ranks are not "
+                        "supported");
         AovSpec spec = aovsFromRequest ? parseAovSpec(request.aovs, "--aov")
                        : !s.integrator.aovs.empty() ? parseAovSpec(s.integrator.aovs, s.integrator.aovsWhere)
                                                     : AovSpec{};
@@ -171,15 +196,41 @@ RenderStats Renderer::stats() const {
     s.rays = c.rays + (aov_ ? aov_->rays() : 0);
     s.samplesPerPixel = int(std::lround(session_->samplesPerPixel()));
     s.invalidSamples = c.invalidSamples;
+    if (comm_->size() > 1) {  // samples and rays are this rank's: the render's are the sum
+        uint64_t counts[2] = {s.samples, s.rays};
+        comm_->sum(std::span<uint64_t>(counts));
+        s.samples = counts[0];
+        s.rays = counts[1];
+    }
     return s;
+}
+
+std::vector<RankStats> Renderer::rankStats() const {
+    const SessionCounters c = session_->counters();
+    const RankStats mine{c.samples, c.rays + (aov_ ? aov_->rays() : 0), runSeconds_};
+    std::vector<RankStats> all;
+    for (const std::vector<uint8_t>& bytes :
+         comm_->allGather(std::span(reinterpret_cast<const uint8_t*>(&mine), sizeof mine))) {
+        RankStats r;
+        std::memcpy(&r, bytes.data(), std::min(bytes.size(), sizeof r));
+        all.push_back(r);
+    }
+    return all;
 }
 
 void Renderer::save(const std::string& path) const {
     CheckpointHeader header{integrator_, identity_, priorSeconds_ + runSeconds_, session_->samplesPerPixel()};
-    writeFileAtomically(path, [&](std::ostream& out) {
+    auto writeState = [&](std::ostream& out) {
         writeCheckpointHeader(out, header);
         session_->save(out);
         if (aov_) aov_->save(out);
+    };
+    if (comm_->size() == 1) return writeFileAtomically(path, writeState);
+    // Every rank's session saves (it may gather its ranks' state to rank 0); rank 0 writes.
+    std::ostringstream state(std::ios::binary);
+    writeState(state);
+    agreeOnFailure(*comm_, [&] {
+        if (comm_->isRoot()) writeFileAtomically(path, [&](std::ostream& out) { out << state.str(); });
     });
 }
 
@@ -194,12 +245,41 @@ CheckpointHeader readCheckpointHeaderFile(const std::string& path) {
 }
 
 void Renderer::load(const std::string& path) {
-    const CheckpointHeader header = readCheckpointHeaderFile(path);
+    if (comm_->size() == 1) {
+        std::ifstream in(path, std::ios::binary);
+        if (!in) throw Error(path + ": cannot read the checkpoint");
+        return loadFrom(path, in);
+    }
+    // Rank 0 reads the file, every rank restores from its bytes: the same bytes give every rank
+    // the same outcome, so a refusal is every rank's (AgreedError) and ends them together.
+    std::vector<uint8_t> bytes;
+    agreeOnFailure(*comm_, [&] {
+        if (!comm_->isRoot()) return;
+        std::ifstream in(path, std::ios::binary);
+        if (!in) throw Error(path + ": cannot read the checkpoint");
+        bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    });
+    comm_->broadcast(bytes, 0);
+    std::istringstream in(std::string(bytes.begin(), bytes.end()), std::ios::binary);
+    try {
+        loadFrom(path, in);
+    } catch (const Error& e) {
+        throw AgreedError(e.what());
+    }
+}
+
+void Renderer::loadFrom(const std::string& path, std::istream& in) {
+    CheckpointHeader header;
+    try {
+        header = readCheckpointHeader(in);
+    } catch (const Error& e) {
+        throw Error(path + ": " + e.what());
+    }
+    if (const std::string ranks = rankCountMismatch(header.identity, comm_->size()); !ranks.empty())
+        throw Error(path + ": " + ranks);
     if (const std::string mismatch = checkpointMismatch(header, integrator_, identity_); !mismatch.empty())
         throw Error(path + ": " + mismatch);
-    std::ifstream in(path, std::ios::binary);
     try {
-        readCheckpointHeader(in);  // past the header, to the payload
         session_->load(in);
         if (aov_) aov_->load(in, session_->samplesPerPixel());
     } catch (const Error& e) {

@@ -10,6 +10,7 @@
 // from a checkpoint (load) goes on with the time and samples it already has.
 #pragma once
 
+#include <iosfwd>
 #include <memory>
 #include <string>
 #include <vector>
@@ -41,6 +42,12 @@ struct RenderStats {
     uint64_t rays = 0;            // rays traced in this run (closest hit + shadow)
     int samplesPerPixel = 0;      // samples (MLT: mutations, rounded) per pixel, whole render
     uint64_t invalidSamples = 0;  // NaN/Inf/negative samples dropped (whole render)
+};
+
+/// One rank's share of this run (Renderer::rankStats).
+struct RankStats {
+    uint64_t samples = 0, rays = 0;
+    double seconds = 0;  // stepping, this run
 };
 
 struct RenderProgress {
@@ -85,8 +92,11 @@ public:
     RenderProgress progress() const;
     Image develop() const;
     /// Statistics of the render: seconds and samples per pixel of the whole render, samples and
-    /// rays of this run (for rates, with runSeconds()).
+    /// rays of this run (for rates, with runSeconds()), summed over the ranks. Collective when the
+    /// render is spread over ranks (every rank calls it).
     RenderStats stats() const;
+    /// Every rank's samples, rays and seconds of this run, by rank. Collective.
+    std::vector<RankStats> rankStats() const;
     double runSeconds() const { return runSeconds_; }
     const IntegratorSession& session() const { return *session_; }
     /// Whether the render has AOVs (the scene's aov integrator or the request's), and their
@@ -94,13 +104,20 @@ public:
     bool hasAovs() const { return aov_ != nullptr; }
     AovImage developAovs() const;
 
-    /// Writes the whole state to `path` atomically (a temporary file, then a rename).
+    /// Writes the whole state to `path` atomically (a temporary file, then a rename). Collective:
+    /// every rank's session saves (gathering what the file needs) and rank 0 writes the file; a
+    /// failure to write is every rank's (AgreedError).
     void save(const std::string& path) const;
     /// Restores a checkpoint written by save() for the same render; throws caustica::Error
     /// "PATH: REASON" naming the first setting that differs, leaving the render unchanged.
+    /// Collective: rank 0 reads the file and broadcasts it, every rank restores from the same
+    /// bytes; a checkpoint of another number of ranks is refused.
     void load(const std::string& path);
 
 private:
+    /// load() from a stream positioned at the checkpoint's start; errors name `path`.
+    void loadFrom(const std::string& path, std::istream& in);
+
     std::unique_ptr<Scene> scene_;
     Communicator* comm_;
     std::unique_ptr<Accel> accel_;

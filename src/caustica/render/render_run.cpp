@@ -68,6 +68,7 @@ RunResult runRender(Renderer& renderer, const RunControl& c) {
         }
         renderer.step();
         if (progress) progress->update(renderer.progress().samplesPerPixel);
+        if (c.onStep) c.onStep(renderer.progress());
         if (c.checkpointEvery > 0 && renderer.runSeconds() - lastCheckpoint >= c.checkpointEvery &&
             !renderer.finished()) {
             lastCheckpoint = renderer.runSeconds();

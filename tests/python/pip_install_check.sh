@@ -2,7 +2,8 @@
 # ctest python_pip_install: `pip install .` of the source tree into a fresh virtual environment
 # (with the system's site packages, for Debian's numpy), then imports caustica and renders a tiny
 # image. Usage: pip_install_check.sh PYTHON VENV_DIR PIP_BUILD_DIR
-# Environment (python/CMakeLists.txt): CAUSTICA_SOURCE_DIR; CAUSTICA_CXX_LAUNCHER (ccache) and,
+# Environment (python/CMakeLists.txt): CAUSTICA_SOURCE_DIR; CAUSTICA_CXX_COMPILER and
+# CAUSTICA_CXX_LAUNCHER (ccache) and,
 # for a CUDA build, CAUSTICA_CUDA_BUILD=ON and CAUSTICA_CUDA_COMPILER. The wheel is compiled with
 # the build's launcher and flags in a folder beside the build folder (same depth below the source,
 # so ccache's base_dir makes every path the same): the libraries come out of the cache.
@@ -21,15 +22,22 @@ if ! "$venv/bin/python" -m pip download --quiet --no-deps --dest "$probe" --time
 fi
 rm -rf "$probe"
 
-args=(-C "build-dir=$build")
+args=(--config-settings="build-dir=$build")
+# The build's compiler by its path: ccache's hash tells /usr/bin/c++ and x86_64-linux-gnu-g++ apart.
+if [ -n "${CAUSTICA_CXX_COMPILER:-}" ]; then
+    args+=(--config-settings="cmake.define.CMAKE_CXX_COMPILER=$CAUSTICA_CXX_COMPILER")
+fi
 launcher="${CAUSTICA_CXX_LAUNCHER:-}"
 if [ -n "$launcher" ]; then
     export CCACHE_BASEDIR="$src"
-    args+=(-C "cmake.define.CMAKE_CXX_COMPILER_LAUNCHER=$launcher" -C "cmake.define.CMAKE_C_COMPILER_LAUNCHER=$launcher")
+    args+=(--config-settings="cmake.define.CMAKE_CXX_COMPILER_LAUNCHER=$launcher")
 fi
 if [ "${CAUSTICA_CUDA_BUILD:-OFF}" = ON ]; then
-    args+=(-C cmake.define.CAUSTICA_CUDA=ON -C "cmake.define.CMAKE_CUDA_COMPILER=$CAUSTICA_CUDA_COMPILER")
-    [ -n "$launcher" ] && args+=(-C "cmake.define.CMAKE_CUDA_COMPILER_LAUNCHER=$launcher")
+    args+=(--config-settings=cmake.define.CAUSTICA_CUDA=ON
+           --config-settings="cmake.define.CMAKE_CUDA_COMPILER=$CAUSTICA_CUDA_COMPILER")
+    if [ -n "$launcher" ]; then
+        args+=(--config-settings="cmake.define.CMAKE_CUDA_COMPILER_LAUNCHER=$launcher")
+    fi
 fi
 start=$(date +%s)
 (cd "$src" && "$venv/bin/python" -m pip install --no-cache-dir "${args[@]}" .)

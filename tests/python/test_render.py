@@ -81,7 +81,11 @@ def test_progress_callback_between_passes_and_stopping_early():
     caustica.render(scene, spp=6, spp_per_pass=2, progress=seen.append)
     assert [p["spp"] for p in seen] == [2, 4, 6]
     assert all(p["target"] == 6 for p in seen) and seen[-1]["seconds"] > 0
+
+def test_progress_callback_returning_false_stops_quietly(capfd):
+    scene = caustica.load_scene(CORNELL, width=16, height=16)
     calls = []
     r = caustica.Renderer(scene, spp=8, spp_per_pass=1)
     assert r.run(lambda p: calls.append(p) or len(calls) < 3)  # stopped by the callback
     assert len(calls) == 3 and r.progress()["spp"] == 3 and not r.finished
+    assert capfd.readouterr().err == ""  # none of the CLI's "continue with --resume" lines

@@ -92,8 +92,9 @@ RunResult runRender(Renderer& renderer, const RunControl& c) {
     if (result.cancelled) {
         saveCheckpoint();
         if (!c.checkpoint.empty()) result.written.push_back(c.checkpoint);
-        std::fprintf(stderr, "interrupted at %.4g spp: continue with --resume (checkpoint %s)\n",
-                     renderer.progress().samplesPerPixel, c.checkpoint.empty() ? "none" : c.checkpoint.c_str());
+        if (c.catchInterrupts)  // the loop handled Ctrl-C: say how to go on (a library caller knows)
+            std::fprintf(stderr, "interrupted at %.4g spp: continue with --resume (checkpoint %s)\n",
+                         renderer.progress().samplesPerPixel, c.checkpoint.empty() ? "none" : c.checkpoint.c_str());
     } else if (!c.checkpoint.empty()) {
         std::error_code ec;
         fs::remove(c.checkpoint, ec);  // the render is complete: nothing left to resume

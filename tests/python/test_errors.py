@@ -9,24 +9,26 @@ def test_error_is_a_runtime_error():
     assert issubclass(caustica.Error, RuntimeError)
 
 
-def test_bad_scene_has_the_cli_message(tmp_path):
-    bad = tmp_path / "bad.xml"
-    bad.write_text('<scene version="3.0.0">\n  <shape type="sphere">\n    <float name="radius" value="abc"/>\n'
-                   '  </shape>\n</scene>\n')
-    with pytest.raises(caustica.Error) as e:
-        caustica.load_scene(str(bad))
-    assert str(e.value) == cli_error("render", bad, "-o", tmp_path / "x.exr")
-    assert str(bad) in str(e.value)
-
-
-def test_missing_mesh_has_the_cli_message(tmp_path):
-    scene = tmp_path / "mesh.xml"
-    scene.write_text('<scene version="3.0.0">\n  <shape type="ply">\n'
-                     '    <string name="filename" value="no-such-mesh.ply"/>\n  </shape>\n</scene>\n')
+def error_of_scene(tmp_path, name, xml):
+    """Loads the scene `xml` from Python and renders it with the CLI: the same one-line message."""
+    scene = tmp_path / name
+    scene.write_text(xml)
     with pytest.raises(caustica.Error) as e:
         caustica.load_scene(str(scene))
     assert str(e.value) == cli_error("render", scene, "-o", tmp_path / "x.exr")
-    assert "no-such-mesh.ply" in str(e.value)
+    return str(e.value)
+
+
+def test_bad_scene_has_the_cli_message(tmp_path):
+    message = error_of_scene(tmp_path, "bad.xml", '<scene version="3.0.0">\n  <shape type="sphere">\n'
+                             '    <float name="radius" value="abc"/>\n  </shape>\n</scene>\n')
+    assert str(tmp_path / "bad.xml") in message
+
+
+def test_missing_mesh_has_the_cli_message(tmp_path):
+    message = error_of_scene(tmp_path, "mesh.xml", '<scene version="3.0.0">\n  <shape type="ply">\n'
+                             '    <string name="filename" value="no-such-mesh.ply"/>\n  </shape>\n</scene>\n')
+    assert "no-such-mesh.ply" in message
 
 
 def test_missing_scene_file_names_it(tmp_path):

@@ -127,6 +127,7 @@ RunResult runRender(Renderer& renderer, const RunControl& c) {
         renderer.step();
         stepped = true;
         if (progress) progress->update(renderer.progress().samplesPerPixel);
+        if (c.onStep) c.onStep(renderer.progress());
     }
     if (progress) progress->finish();
 
@@ -145,7 +146,7 @@ RunResult runRender(Renderer& renderer, const RunControl& c) {
     if (result.cancelled) {
         saveCheckpoint();
         if (!c.checkpoint.empty()) result.written.push_back(c.checkpoint);
-        if (root)
+        if (root && c.catchInterrupts)  // the loop handled Ctrl-C: say how to go on (a library caller knows)
             std::fprintf(stderr, "interrupted at %.4g spp: continue with --resume (checkpoint %s)\n",
                          renderer.progress().samplesPerPixel, c.checkpoint.empty() ? "none" : c.checkpoint.c_str());
     } else if (!c.checkpoint.empty() && root) {

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <atomic>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -34,6 +35,9 @@ struct RunControl {
     /// Denoise the final image into NAME.denoised.EXT beside every output (render_denoise.h); the
     /// request must then ask for the guides (RenderRequest::denoiseGuides).
     std::optional<DenoiseSettings> denoise;
+    /// Called after every step with the render's progress (the Python module's progress callback
+    /// and Ctrl-C check); an exception it throws ends the render and propagates to the caller.
+    std::function<void(const RenderProgress&)> onStep;
 };
 
 struct RunResult {

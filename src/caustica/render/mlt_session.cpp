@@ -10,6 +10,7 @@
 // rank's chains to rank 0, which writes the whole render.
 #include <cstdio>
 #include <memory>
+#include <string>
 
 #include "caustica/integrators/mlt/mlt_driver.h"
 #include "caustica/integrators/mlt/mlt_integrator.h"
@@ -100,7 +101,11 @@ public:
         std::snprintf(line, sizeof line, "device: %s; integrator mlt, %u chains x %u proposals, %s target, %s state, %s splats",
                       deviceName(device_.kind), s.chains, s.proposals, targetName(s.target), stateName(s.state),
                       splatName(s.splat));
-        return line;
+        std::string text = line;
+        if (comm_.size() > 1)
+            text += ", over " + std::to_string(comm_.size()) + " ranks (" + std::to_string(mlt_->localChains()) +
+                    " chains on rank " + std::to_string(comm_.rank()) + ")";
+        return text;
     }
     void printSummary(std::FILE* out) const override {
         const MltStats& s = mlt_->stats();

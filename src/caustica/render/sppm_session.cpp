@@ -101,6 +101,7 @@ public:
                       photonDirectionName(s.direction), photonStructureName(s.structure));
         std::string text = line;
         if (s.mapper == PhotonMapper::Ppm) text += ", " + std::to_string(s.hitpoints) + " hitpoints/pixel";
+        if (comm_.size() > 1) text += ", photons split over " + std::to_string(comm_.size()) + " ranks";
         return text;
     }
     void printSummary(std::FILE* out) const override {

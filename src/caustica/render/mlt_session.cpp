@@ -1,8 +1,16 @@
 // mlt_session.cpp — the session of Metropolis light transport: a bootstrap step, then one
 // lock-step iteration of every chain per step; the checkpoint payload is the MLT state
 // (integrators/mlt/mlt_checkpoint.h).
+//
+// Over ranks (SessionContext::comm; docs/MPI_INTEGRATORS.md): the bootstrap samples are split by
+// global index and gathered, so b and the chain starts are one process's; each rank steps the
+// chains of its share of the global chain indices (their streams keyed by them); the iteration
+// counters are summed every step (b and the counters are the whole render's on every rank);
+// develop() is COLLECTIVE (the splat films are summed over the ranks); save() gathers every
+// rank's chains to rank 0, which writes the whole render.
 #include <cstdio>
 #include <memory>
+#include <string>
 
 #include "caustica/integrators/mlt/mlt_driver.h"
 #include "caustica/integrators/mlt/mlt_integrator.h"
@@ -48,32 +56,43 @@ RenderIdentity mltIdentity(const PathSettings& path, const MltSettings& s) {
 class MltSession final : public IntegratorSession {
 public:
     MltSession(const SessionContext& c, const PathSettings& path, const MltSettings& settings)
-        : path_(path), device_(c.device) {
+        : path_(path), device_(c.device), comm_(c.comm) {
         mlt_ = std::make_unique<MltRenderer>(onDevice(c.device, [&](auto exec) {
-            return makeMltDriver<decltype(exec)>(c.scene, c.accel, path_, settings, c.seed);
+            return makeMltDriver<decltype(exec)>(c.scene, c.accel, path_, settings, c.seed, c.comm);
         }));
     }
 
     void step(double) override {
+        const uint64_t before = comm_.bytesSent();
         if (!mlt_->started()) {
             mlt_->bootstrap();
+            bootstrapBytes_ = comm_.bytesSent() - before;
             return;
         }
         mlt_->iterate();
         iterated_ = true;
+        ++iterationsThisRun_;
+        iterationBytes_ += comm_.bytesSent() - before;
     }
     double samplesPerPixel() const override { return mlt_->mutationsPerPixel(); }
     bool hasImage() const override { return iterated_ || mlt_->stats().iterations > 0; }
-    Image develop() const override { return mlt_->develop(); }
+    /// Collective over ranks (the splat films are summed): every rank calls it.
+    Image develop() const override {
+        const uint64_t before = comm_.bytesSent();
+        Image image = mlt_->develop();
+        developBytes_ = comm_.bytesSent() - before;
+        return image;
+    }
     SessionCounters counters() const override {
-        const MltStats& s = mlt_->stats();
-        return SessionCounters{s.proposals - proposalsAtLoad_, s.rays - raysAtLoad_, 0};
+        // This rank's proposals (its chains) and rays.
+        const uint64_t proposals = uint64_t(mlt_->localChains()) * mlt_->settings().proposals * iterationsThisRun_;
+        return SessionCounters{proposals, mlt_->stats().rays - raysAtLoad_, 0};
     }
     RenderIdentity parameters() const override { return mltIdentity(path_, mlt_->settings()); }
     void save(std::ostream& out) const override { mlt_->save(out); }
     void load(std::istream& in) override {
         mlt_->load(in);
-        proposalsAtLoad_ = mlt_->stats().proposals;
+        iterationsThisRun_ = 0;
         raysAtLoad_ = mlt_->stats().rays;
     }
     std::string description() const override {
@@ -82,7 +101,11 @@ public:
         std::snprintf(line, sizeof line, "device: %s; integrator mlt, %u chains x %u proposals, %s target, %s state, %s splats",
                       deviceName(device_.kind), s.chains, s.proposals, targetName(s.target), stateName(s.state),
                       splatName(s.splat));
-        return line;
+        std::string text = line;
+        if (comm_.size() > 1)
+            text += ", over " + std::to_string(comm_.size()) + " ranks (" + std::to_string(mlt_->localChains()) +
+                    " chains on rank " + std::to_string(comm_.rank()) + ")";
+        return text;
     }
     void printSummary(std::FILE* out) const override {
         const MltStats& s = mlt_->stats();
@@ -109,15 +132,26 @@ public:
                 {"mlt_bootstrap_seconds", identityNumber(s.bootstrapSeconds)},
                 {"mlt_trace_seconds", identityNumber(s.traceSeconds)},
                 {"mlt_splat_seconds", identityNumber(s.splatSeconds)},
-                {"mlt_sort_seconds", identityNumber(s.sortSeconds)}};
+                {"mlt_sort_seconds", identityNumber(s.sortSeconds)},
+                {"mlt_ranks", std::to_string(comm_.size())},
+                {"mlt_chains_this_rank", std::to_string(mlt_->localChains())},
+                {"bytes_sent_per_iteration",
+                 identityNumber(iterationsThisRun_ > 0 ? double(iterationBytes_) / double(iterationsThisRun_) : 0.0)},
+                {"mlt_bootstrap_bytes_sent", std::to_string(bootstrapBytes_)},
+                {"mlt_develop_bytes_sent", std::to_string(developBytes_)}};
     }
 
 private:
     PathSettings path_;
     Device device_;
+    Communicator& comm_;
     std::unique_ptr<MltRenderer> mlt_;
     bool iterated_ = false;
-    uint64_t proposalsAtLoad_ = 0, raysAtLoad_ = 0;
+    uint64_t iterationsThisRun_ = 0, raysAtLoad_ = 0;
+    // Bytes this rank sent: the bootstrap's gather, the iterations' counter sums this run, the
+    // last develop's film sum.
+    uint64_t bootstrapBytes_ = 0, iterationBytes_ = 0;
+    mutable uint64_t developBytes_ = 0;
 };
 
 }  // namespace

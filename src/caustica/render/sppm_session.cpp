@@ -2,9 +2,17 @@
 // mapping) and ppm (progressive photon mapping): one iteration (eye pass — ppm: the first only —,
 // photon pass, update) per step; samples per pixel = iterations; the checkpoint payload is every
 // pixel's (ppm: hitpoint's) statistics and the iteration count (integrators/sppm/sppm_checkpoint.h).
+//
+// Over ranks (SessionContext::comm): each rank traces its share of every iteration's photons,
+// chosen by global photon index (rank r: [r P / R, (r + 1) P / R) of P = photon_count), the eye
+// pass the same on every rank; the photon sums (64-bit fixed point) are summed over the ranks
+// before the update, so every rank applies the same update and holds the same state, and the
+// image equals one process's to the bit (docs/MPI_INTEGRATORS.md).
 #include <cstdio>
 #include <memory>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "caustica/integrators/sppm/sppm_checkpoint.h"
 #include "caustica/integrators/sppm/sppm_driver.h"
@@ -36,17 +44,30 @@ const char* mapperName(const SppmSettings& s) { return s.mapper == PhotonMapper:
 
 class SppmSession final : public IntegratorSession {
 public:
-    SppmSession(const SessionContext& c, const SppmSettings& settings) : device_(c.device) {
+    SppmSession(const SessionContext& c, const SppmSettings& settings) : device_(c.device), comm_(c.comm) {
         // --seed wins; else the integrator's seed; else the scene's sampler seed (c.seed).
         const uint64_t seed = c.request.seed || settings.seed < 0 ? c.seed : uint64_t(settings.seed);
         driver_ = onDevice(c.device, [&](auto exec) {
             return makeSppmDriver<decltype(exec)>(c.scene, c.accel, settings, seed);
         });
         seed_ = seed;
+        const uint64_t photons = driver_->settings().photonCount, r = uint64_t(comm_.rank()),
+                       ranks = uint64_t(comm_.size());
+        const uint64_t first = photons * r / ranks;
+        driver_->setPhotonShare(first, photons * (r + 1) / ranks - first);
     }
 
     void step(double) override {
-        driver_->iterate();
+        driver_->tracePhotons();
+        if (comm_.size() > 1) {
+            // Host copies (device buffers on a GPU), summed in rank order: integers, so exact.
+            const uint64_t before = comm_.bytesSent();
+            std::vector<uint64_t> sums = driver_->photonSums();
+            comm_.sum(std::span<uint64_t>(sums));
+            driver_->setPhotonSums(sums);
+            bytesSentThisRun_ += comm_.bytesSent() - before;
+        }
+        driver_->update();
         ++iterationsThisRun_;
     }
     double samplesPerPixel() const override { return double(driver_->stats().iterations); }
@@ -54,7 +75,9 @@ public:
     bool hasImage() const override { return driver_->stats().iterations > 0; }
     Image develop() const override { return driver_->develop(); }
     SessionCounters counters() const override {
-        const uint64_t pixels = uint64_t(driver_->width()) * uint64_t(driver_->height());
+        // Every rank traces the eye pass: its camera samples count on rank 0 only, so that the
+        // sum over ranks is one process's; rays are this rank's (eye pass and photon share).
+        const uint64_t pixels = comm_.isRoot() ? uint64_t(driver_->width()) * uint64_t(driver_->height()) : 0;
         return SessionCounters{iterationsThisRun_ * pixels, driver_->stats().rays, 0};
     }
     RenderIdentity parameters() const override {
@@ -78,6 +101,7 @@ public:
                       photonDirectionName(s.direction), photonStructureName(s.structure));
         std::string text = line;
         if (s.mapper == PhotonMapper::Ppm) text += ", " + std::to_string(s.hitpoints) + " hitpoints/pixel";
+        if (comm_.size() > 1) text += ", photons split over " + std::to_string(comm_.size()) + " ranks";
         return text;
     }
     void printSummary(std::FILE* out) const override {
@@ -113,7 +137,10 @@ public:
                 {"sppm_eye_seconds", identityNumber(s.eyeSeconds)},
                 {"sppm_grid_seconds", identityNumber(s.gridSeconds)},
                 {"sppm_photon_seconds", identityNumber(s.photonSeconds)},
-                {"sppm_update_seconds", identityNumber(s.updateSeconds)}};
+                {"sppm_update_seconds", identityNumber(s.updateSeconds)},
+                {"sppm_ranks", std::to_string(comm_.size())},
+                {"bytes_sent_per_iteration",
+                 identityNumber(iterationsThisRun_ > 0 ? double(bytesSentThisRun_) / double(iterationsThisRun_) : 0.0)}};
     }
 
 private:
@@ -134,6 +161,8 @@ private:
     }
 
     Device device_;
+    Communicator& comm_;
+    uint64_t bytesSentThisRun_ = 0;  // by the exchanges of step(), this run
     uint64_t seed_ = 0;
     std::unique_ptr<SppmDriverBase> driver_;
     uint64_t iterationsThisRun_ = 0;

@@ -13,6 +13,8 @@
 #include <chrono>
 #include <istream>
 #include <ostream>
+#include <span>
+#include <sstream>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -24,6 +26,8 @@
 #include "caustica/integrators/mlt/mlt_gpu_memory.h"
 #include "caustica/integrators/mlt/mlt_impl.h"
 #include "caustica/integrators/mlt/mlt_kernel.h"
+#include "caustica/integrators/mlt/mlt_rank_checkpoint.h"
+#include "caustica/integrators/mlt/mlt_ranks.h"
 #include "caustica/parallel/backend.h"
 #include "caustica/parallel/buffer.h"
 #include "caustica/parallel/launch.h"
@@ -34,19 +38,22 @@ namespace caustica {
 
 /// The MLT driver of the device of `Exec` (defined per device by mlt_driver.cpp). The scene and
 /// accel (a Bvh one for a GPU) outlive it. Throws caustica::Error for settings it cannot run.
+/// `comm`: the ranks the chains are split over (mlt_impl.h; one process by default).
 template <class Exec>
 std::unique_ptr<MltRenderer::Impl> makeMltDriver(const Scene& scene, const Accel& accel, const PathSettings& path,
-                                                 const MltSettings& settings, uint64_t seed);
+                                                 const MltSettings& settings, uint64_t seed,
+                                                 Communicator& comm = singleProcess());
 
 // Kernel launchers: free functions, as nvcc's kernel lambdas must not be defined in private members.
 namespace mlt_driver_detail {
 
+/// Bootstrap samples [first, first + count) (their global indices key their streams).
 template <class Exec, class Store, class Intersector>
 void bootstrapKernel(Exec exec, const SceneView& scene, const Intersector& accel, const MltStepParams& params,
-                     uint64_t count, float* importance, uint32_t* pixel, uint32_t* rays) {
+                     uint64_t first, uint64_t count, float* importance, uint32_t* pixel, uint32_t* rays) {
     launch(exec, "mlt.bootstrap", count, [=] CA_HD(size_t i) {
         uint32_t r = 0;
-        importance[i] = bootstrapImportance<Store>(scene, accel, params, i, r, pixel[i]);
+        importance[i] = bootstrapImportance<Store>(scene, accel, params, first + i, r, pixel[i]);
         rays[i] = r;
     });
 }
@@ -152,12 +159,14 @@ class MltDriver final : public MltRenderer::Impl {
     static constexpr bool kDimensionMajor = Exec::kind != DeviceKind::Cpu;
 
 public:
-    MltDriver(const Scene& scene, const Accel& accel, const PathSettings& path, const MltSettings& s, uint64_t seed)
-        : Impl(scene, path, s, seed),
+    /// settings.chains in all over the ranks of `comm`; this rank keeps localChains() of them.
+    MltDriver(const Scene& scene, const Accel& accel, const PathSettings& path, const MltSettings& s, uint64_t seed,
+              Communicator& comm)
+        : Impl(scene, path, s, seed, comm),
           scene_(scene, accel, device()),
           film_(scene.film.filter, scene.film.width, scene.film.height, scene.film.eyeWidth),
-          buf_(device(), s.chains, s.proposals, pixels_, s.splat, mltSplatBatch(s, pixels_)) {
-        const uint32_t n = s.chains;
+          buf_(device(), localChains_, s.proposals, pixels_, s.splat, mltSplatBatch(s, pixels_)) {
+        const uint32_t n = localChains_;
         const uint32_t bounces = mltStoredBounces(path);
         store_.dims = mltStoredDims(bounces);
         if constexpr (kCompact) {
@@ -193,29 +202,36 @@ public:
     void bootstrap() override {
         using namespace mlt_driver_detail;
         const auto t0 = MltClock::now();
-        const uint32_t n = settings.chains;
+        const uint32_t n = localChains_;
         const uint64_t m = mltBootstrapCount(settings, pixels_);
-        Buffer<float> importance(device(), m);
-        Buffer<uint32_t> pixelOf(device(), m), rays(device(), m);
+        // This rank's share of the samples (all of them in one process), by global index.
+        const MltShare share = mltShareOf(m, comm_.rank(), comm_.size());
+        Buffer<float> importance(device(), share.count);
+        Buffer<uint32_t> pixelOf(device(), share.count), rays(device(), share.count);
         // Luminances first (params_.pixelWeight is still null).
         scene_.visit(Exec{}, [&](const auto& intersector) {
-            bootstrapKernel<Exec, Store>(Exec{}, scene_.view(), intersector, params_, m, importance.data(),
-                                         pixelOf.data(), rays.data());
+            bootstrapKernel<Exec, Store>(Exec{}, scene_.view(), intersector, params_, share.first, share.count,
+                                         importance.data(), pixelOf.data(), rays.data());
         });
         stats.rays += reduceSum(device(), rays.constSpan());
 
-        // The plan (pixel weights, b, starts) is made on the host; the pixels matter to the
+        // The plan (pixel weights, b, starts) is made on the host from all M samples (gathered
+        // from the ranks: every rank makes one process's plan); the pixels matter to the
         // relative target only.
         std::vector<float> hostImportance = importance.toHost();  // the plan may rescale it
-        const std::vector<uint32_t> hostPixel =
+        std::vector<uint32_t> hostPixel =
             settings.target == MltTarget::Relative ? pixelOf.toHost() : std::vector<uint32_t>{};
+        if (comm_.size() > 1) gatherMltBootstrap(comm_, hostImportance, hostPixel);
         const MltBootstrapPlan plan =
             planMltBootstrap(hostImportance, hostPixel, settings, params_.width, params_.height, params_.seed,
                              film_.eyeWidth());
         setPixelWeight(plan.pixelWeight);
         adoptMltBootstrap(plan, m, b_, stats);
 
-        const Buffer<uint64_t> startIndex(device(), plan.starts);
+        // This rank's chains start where one process's chains of the same global index do.
+        const Buffer<uint64_t> startIndex(
+            device(), std::vector<uint64_t>(plan.starts.begin() + chainFirst(),
+                                            plan.starts.begin() + chainFirst() + std::ptrdiff_t(n)));
         Buffer<uint32_t> startRays(device(), n);
         scene_.visit(Exec{}, [&](const auto& intersector) {
             startKernel(Exec{}, scene_.view(), intersector, view(), params_, startIndex.data(), startRays.data());
@@ -240,23 +256,34 @@ public:
             },
             [&] {
                 advanceKernel(Exec{}, v, p);
-                return buf_.reduceCounters(device());  // where they live; each reduction waits for the advance
+                // Where they live (each reduction waits for the advance), then over the ranks.
+                MltIterationCounts c = buf_.reduceCounters(device());
+                if (comm_.size() > 1) sumMltIterationCounts(comm_, c);
+                return c;
             },
             [&] { splat(buf_.batch, buf_.image.data()); }, [&] { sortChains(); });
     }
 
+    /// Collective over the ranks: their splat sums are summed (in rank order) into the image.
     Image develop() override {
         const double total = double(settings.chains) * settings.proposals * double(stats.iterations);
         const uint64_t pending = buf_.pendingIterations(stats.iterations);
-        if (pending == 0) return film_.develop(buf_.image.toHost().data(), b_, total);
-        // The unfinished batch goes into a copy of the sums; the render's own stay as they are.
-        Buffer<double> sums(device(), buf_.image.toHost());
-        splat(pending, sums.data());
-        return film_.develop(sums.toHost().data(), b_, total);
+        std::vector<double> sums = buf_.image.toHost();
+        if (pending > 0) {
+            // The unfinished batch goes into a copy of the sums; the render's own stay as they are.
+            Buffer<double> copy(device(), sums);
+            splat(pending, copy.data());
+            sums = copy.toHost();
+        }
+        if (comm_.size() > 1) comm_.sum(std::span<double>(sums));
+        return film_.develop(sums.data(), b_, total);
     }
 
     // Checkpoints hold the chain-major store: a dimension-major one is transposed on the host
     // (mlt_checkpoint.h), so a checkpoint resumes on either device.
+    // Over ranks (collective): every rank's part goes to rank 0, which writes the whole render
+    // (mlt_rank_checkpoint.h); the other ranks write nothing. A resume reads the whole render
+    // on every rank, which keeps its own part.
     void save(std::ostream& out) const override {
         MltCheckpoint c = mltCheckpointOf(stats, b_, buf_);
         c.pixelWeight = pixelWeight_.toHost();
@@ -266,13 +293,28 @@ public:
         } else {
             c.values = toChainMajor(values_.toHost(), slots_[0], 1);
         }
-        writeMltCheckpoint(out, checkpointKeys(), c);
+        if (comm_.size() == 1) return writeMltCheckpoint(out, checkpointKeys(), c);
+        std::ostringstream part;
+        writeMltCheckpoint(part, checkpointKeys(), c);
+        const std::string bytes = part.str();
+        const std::vector<std::vector<uint8_t>> parts =
+            comm_.allGather(std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size()));
+        if (!comm_.isRoot()) return;
+        std::vector<MltCheckpoint> read;
+        for (int q = 0; q < comm_.size(); ++q) {
+            std::istringstream in(std::string(parts[size_t(q)].begin(), parts[size_t(q)].end()));
+            const uint64_t chains = mltShareOf(settings.chains, q, comm_.size()).count;
+            read.push_back(readMltCheckpoint(in, checkpointKeys(), checkpointSizes(chains, 1), stats));
+        }
+        writeMltCheckpoint(out, checkpointKeys(), mergeMltCheckpoints(read, chainWidths()));
     }
 
     void load(std::istream& in) override {
-        const MltCheckpointSizes sizes = mltCheckpointSizes(settings, pixels_, buf_, kCompact ? fine_.size() : 0,
-                                                            kCompact ? coarse_.size() : 0, kCompact ? 0 : values_.size());
-        const MltCheckpoint c = readMltCheckpoint(in, checkpointKeys(), sizes, stats);  // throws before any change
+        const MltCheckpointSizes sizes = checkpointSizes(settings.chains, size_t(comm_.size()));
+        MltCheckpoint c = readMltCheckpoint(in, checkpointKeys(), sizes, stats);  // throws before any change
+        if (comm_.size() > 1)
+            c = mltCheckpointPart(c, chainWidths(), MltShare{chainFirst(), localChains_}, settings.chains,
+                                  comm_.rank(), comm_.size());
         restoreMltCheckpoint(c, stats, b_, buf_);
         if constexpr (kCompact) {
             fine_.copyFromHost(fromChainMajor(c.fine, slots_[0], 3));
@@ -295,11 +337,39 @@ private:
 
     template <class T>
     std::vector<T> toChainMajor(const std::vector<T>& stored, size_t slots, size_t width) const {
-        return kDimensionMajor ? mltTransposeCells(stored, slots, settings.chains, width) : stored;
+        return kDimensionMajor ? mltTransposeCells(stored, slots, localChains_, width) : stored;
     }
     template <class T>
     std::vector<T> fromChainMajor(const std::vector<T>& chainMajor, size_t slots, size_t width) const {
-        return kDimensionMajor ? mltTransposeCells(chainMajor, settings.chains, slots, width) : chainMajor;
+        return kDimensionMajor ? mltTransposeCells(chainMajor, localChains_, slots, width) : chainMajor;
+    }
+
+    /// Elements per chain of the chain store's arrays (0: a placeholder, mlt_rank_checkpoint.h).
+    MltChainWidths chainWidths() const {
+        MltChainWidths w;
+        if constexpr (kCompact) {
+            w.fine = 3 * slots_[0];
+            w.coarse = slots_[1];
+        } else {
+            w.values = slots_[0];
+        }
+        w.splats = size_t(settings.proposals) + 1;
+        return w;
+    }
+
+    /// A checkpoint's array sizes for `chains` chains and `films` splat-sum films (this rank's
+    /// part: localChains() and 1; the whole render: settings.chains and the rank count).
+    MltCheckpointSizes checkpointSizes(uint64_t chains, size_t films) const {
+        const MltChainWidths w = chainWidths();
+        MltCheckpointSizes sizes = mltCheckpointSizes(settings, pixels_, buf_, 0, 0, 0);
+        auto store = [&](size_t width, bool has) { return has ? std::max<size_t>(1, width * chains) : 0; };
+        sizes.fine = store(w.fine, kCompact);
+        sizes.coarse = store(w.coarse, kCompact);
+        sizes.values = store(w.values, !kCompact);
+        sizes.chains = chains;
+        sizes.image *= films;
+        sizes.splatsPerIteration = chains * w.splats;
+        return sizes;
     }
 
     /// The relative target's pixel weights, where the kernels read them (params_.pixelWeight).
@@ -360,7 +430,7 @@ private:
     /// chainStride) in place, through the scratch array.
     void permuteInPlace(void* data, size_t elementBytes, size_t rows, size_t chainStride) {
         if (rows == 0) return;
-        const uint32_t n = settings.chains;
+        const uint32_t n = localChains_;
         const size_t rowStride = chainStride == 1 ? n : 1;
         mlt_driver_detail::permute(Exec{}, data, permuteScratch_.data(), elementBytes, n, rows, rowStride,
                                    chainStride, order_.data());
@@ -368,8 +438,8 @@ private:
     }
     /// The largest per-chain array, in bytes: the permutation's scratch.
     size_t permuteScratchBytes(uint32_t bounces) const {
-        const size_t n = settings.chains;
-        if constexpr (kCompact) return mltGpuPermuteScratchBytes(settings.chains, bounces);
+        const size_t n = localChains_;
+        if constexpr (kCompact) return mltGpuPermuteScratchBytes(localChains_, bounces);
         return std::max({sizeof(float) * slots_[0] * n, sizeof(Spectrum) * n, sizeof(Vec2f) * n});
     }
 

@@ -8,6 +8,7 @@
 #include <iosfwd>
 #include <vector>
 
+#include "caustica/distributed/communicator.h"
 #include "caustica/film/filter.h"
 #include "caustica/integrators/mlt/mlt_integrator.h"
 #include "caustica/integrators/mlt/mlt_kernel.h"
@@ -20,10 +21,19 @@ void validateMltSettings(const MltSettings& settings);
 MltStepParams mltStepParams(const Scene& scene, const PathSettings& path, const MltSettings& settings,
                             uint64_t seed);
 
+/// The part [first, first + count) of `total` items that rank `rank` of `ranks` takes (contiguous,
+/// in rank order, sizes differing by at most one).
+struct MltShare {
+    uint64_t first = 0, count = 0;
+};
+MltShare mltShareOf(uint64_t total, int rank, int ranks);
+
 struct MltRenderer::Impl {
     /// Validates `settings` (caustica::Error before a driver allocates anything) and fills what
-    /// every driver needs: settings, the kernel parameters and the pixel count.
-    Impl(const Scene& scene, const PathSettings& path, const MltSettings& settings, uint64_t seed);
+    /// every driver needs: settings, the kernel parameters, the pixel count and this rank's
+    /// chains (settings.chains is the total over the ranks of `comm`).
+    Impl(const Scene& scene, const PathSettings& path, const MltSettings& settings, uint64_t seed,
+         Communicator& comm = singleProcess());
     virtual ~Impl() = default;
     virtual void bootstrap() = 0;
     virtual uint64_t iterate() = 0;
@@ -34,11 +44,18 @@ struct MltRenderer::Impl {
     virtual void save(std::ostream& out) const = 0;
     virtual void load(std::istream& in) = 0;
     uint32_t pixels() const { return pixels_; }
+    /// This rank's chains: global indices [chainFirst(), chainFirst() + localChains()).
+    uint32_t chainFirst() const { return params_.chainOffset; }
+    uint32_t localChains() const { return localChains_; }
+    /// stats: counters and b of the whole render on every rank (summed over the ranks each
+    /// iteration), except rays (this rank's) and the timings (this rank's).
     MltStats stats;
-    MltSettings settings;
+    MltSettings settings;  // chains: the total over the ranks
     bool started = false;  // bootstrapped, or loaded from a checkpoint
 
 protected:
+    Communicator& comm_;
+    uint32_t localChains_ = 0;
     MltStepParams params_;  // iteration and b are set per launch, pixelWeight by the bootstrap
     uint32_t pixels_ = 0;
 };

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <istream>
 #include <optional>
+#include <string>
 #include <ostream>
 #include <vector>
 
@@ -84,10 +85,22 @@ MltStepParams mltStepParams(const Scene& scene, const PathSettings& path, const 
     return p;
 }
 
-MltRenderer::Impl::Impl(const Scene& scene, const PathSettings& path, const MltSettings& s, uint64_t seed)
-    : settings(s), params_(mltStepParams(scene, path, s, seed)) {
+MltShare mltShareOf(uint64_t total, int rank, int ranks) {
+    const uint64_t first = total * uint64_t(rank) / uint64_t(ranks);
+    return MltShare{first, total * uint64_t(rank + 1) / uint64_t(ranks) - first};
+}
+
+MltRenderer::Impl::Impl(const Scene& scene, const PathSettings& path, const MltSettings& s, uint64_t seed,
+                        Communicator& comm)
+    : settings(s), params_(mltStepParams(scene, path, s, seed)), comm_(comm) {
     validateMltSettings(s);
+    if (s.chains < uint32_t(comm.size()))
+        throw Error("MLT: " + std::to_string(s.chains) + " chains cannot be split over " +
+                    std::to_string(comm.size()) + " ranks (at least one chain per rank; --mlt-chains)");
     pixels_ = uint32_t(params_.width) * uint32_t(params_.height);
+    const MltShare share = mltShareOf(s.chains, comm.rank(), comm.size());
+    params_.chainOffset = uint32_t(share.first);
+    localChains_ = uint32_t(share.count);
 }
 
 uint64_t mltBootstrapCount(const MltSettings& s, uint32_t pixels) {
@@ -183,6 +196,7 @@ const MltSettings& MltRenderer::settings() const { return impl_->settings; }
 bool MltRenderer::started() const { return impl_->started; }
 void MltRenderer::save(std::ostream& out) const { impl_->save(out); }
 void MltRenderer::load(std::istream& in) { impl_->load(in); }
+uint32_t MltRenderer::localChains() const { return impl_->localChains(); }
 double MltRenderer::mutationsPerPixel() const {
     return impl_->pixels() > 0 ? double(impl_->stats.proposals) / double(impl_->pixels()) : 0;
 }

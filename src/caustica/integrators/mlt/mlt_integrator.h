@@ -105,7 +105,8 @@ public:
     uint64_t iterate();
     /// The image so far (the splats of an unfinished batch included, without adding them to the
     /// splat sums): splat sums scaled by pixels / total chain splat weight, divided by the
-    /// filter's integral (and its coverage at the image border).
+    /// filter's integral (and its coverage at the image border). Over ranks it is collective:
+    /// every rank's splat sums are summed, and every rank gets the image.
     Image develop() const;
     /// True once bootstrap() ran or a checkpoint was loaded.
     bool started() const;
@@ -115,8 +116,11 @@ public:
     /// leaves the renderer untouched). Every driver (CPU and GPU) has them.
     void save(std::ostream& out) const;
     void load(std::istream& in);
-    /// Proposals per pixel so far (the analogue of samples per pixel).
+    /// Proposals per pixel so far (the analogue of samples per pixel), of the whole render.
     double mutationsPerPixel() const;
+    /// The chains this rank steps (all of settings().chains in one process; makeMltDriver's
+    /// `comm` splits them over ranks).
+    uint32_t localChains() const;
     const MltStats& stats() const;
     const MltSettings& settings() const;
 

@@ -39,6 +39,9 @@ namespace caustica {
 struct MltStepParams {
     uint64_t seed = 0;
     uint32_t iteration = 0;
+    // Global index of this driver's chain 0 (chains split over ranks): the proposal streams are
+    // keyed by the global chain index, so the union of the ranks' chains is one process's.
+    uint32_t chainOffset = 0;
     uint32_t proposals = 1;            // k
     Float largeStepProbability = 0.1f;
     float b = 1;                       // b0: the bootstrap's estimate of E[I], for the splat weights
@@ -113,7 +116,7 @@ template <class Store, class Intersector>
 CA_HD void traceProposal(const SceneView& scene, const Intersector& accel, const MltChainView<Store>& v,
                          const MltStepParams& p, uint32_t item) {
     const uint32_t chain = item / p.proposals, j = item % p.proposals;
-    const uint64_t key = mltProposalKey(p.seed, chain, p.iteration, j);
+    const uint64_t key = mltProposalKey(p.seed, p.chainOffset + chain, p.iteration, j);
     MltProposalSampler<Store> sampler(&v.store, chain, v.usedDims[chain], key,
                                       mltIsLargeStep(key, p.largeStepProbability), p.mutation);
     uint32_t rays = 0;
@@ -143,7 +146,7 @@ CA_HD void advanceChain(const MltChainView<Store>& v, const MltStepParams& p, ui
     for (uint32_t j = 0; j < k; ++j) {
         const uint32_t item = chain * k + j;
         const float Iy = v.proposalImportance[item];
-        const uint64_t key = mltProposalKey(p.seed, chain, p.iteration, j);
+        const uint64_t key = mltProposalKey(p.seed, p.chainOffset + chain, p.iteration, j);
         const bool large = mltIsLargeStep(key, p.largeStepProbability);
         if (large) {
             largeSum += Iy;
@@ -162,7 +165,7 @@ CA_HD void advanceChain(const MltChainView<Store>& v, const MltStepParams& p, ui
     v.largeSteps[chain] = largeCount;
 
     // Next state in proportion to (k - sum a_j, a_1, ..., a_k).
-    const uint64_t selectKey = mltProposalKey(p.seed, chain, p.iteration, 0xffffffffu);
+    const uint64_t selectKey = mltProposalKey(p.seed, p.chainOffset + chain, p.iteration, 0xffffffffu);
     float u = uniformFloat(mix64(selectKey)) * float(k);
     int chosen = -1;
     if (u >= stay) {
@@ -179,7 +182,7 @@ CA_HD void advanceChain(const MltChainView<Store>& v, const MltStepParams& p, ui
     v.accepted[chain] = chosen >= 0 ? 1u : 0u;
     if (chosen < 0) return;
     const uint32_t item = chain * k + uint32_t(chosen);
-    const uint64_t key = mltProposalKey(p.seed, chain, p.iteration, uint32_t(chosen));
+    const uint64_t key = mltProposalKey(p.seed, p.chainOffset + chain, p.iteration, uint32_t(chosen));
     MltProposalSampler<Store> sampler(&v.store, chain, v.usedDims[chain], key,
                                       mltIsLargeStep(key, p.largeStepProbability), p.mutation);
     // The coordinates the accepted path used; raw(d) reads the old value of d only, so updating

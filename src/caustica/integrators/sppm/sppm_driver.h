@@ -41,6 +41,7 @@
 #include "caustica/spatial/kd_tree.h"
 #include "caustica/spatial/multi_hash.h"
 #include "caustica/spatial/uniform_grid.h"
+#include "caustica/util/error.h"
 
 namespace caustica {
 
@@ -70,7 +71,33 @@ struct SppmLookupInputs {
 class SppmDriverBase {
 public:
     virtual ~SppmDriverBase() = default;
-    virtual void iterate() = 0;
+    /// One iteration: tracePhotons(), then update().
+    void iterate() {
+        tracePhotons();
+        update();
+    }
+    /// The first part of an iteration: the eye pass (sppm: every iteration; ppm: the first) and
+    /// the photon pass of this driver's share of the photons (setPhotonShare), into the photon
+    /// sums.
+    virtual void tracePhotons() = 0;
+    /// The second part: the progressive update of every entry from the photon sums (radii,
+    /// flux), which clears them.
+    virtual void update() = 0;
+    /// Host copy of the photon sums of the iteration in flight (after tracePhotons(), before
+    /// update()): per entry three 64-bit fixed-point flux sums, then per entry the photon count.
+    /// Integer sums: adding those of disjoint photon shares gives the whole pass's to the bit.
+    virtual std::vector<uint64_t> photonSums() const = 0;
+    /// Replaces them (the sums over every share of the photons).
+    virtual void setPhotonSums(const std::vector<uint64_t>& sums) = 0;
+    /// Traces only the photons [first, first + count) of each iteration's photon_count (keyed by
+    /// their global index, so the union of disjoint shares is the whole pass); the image stays
+    /// normalised by photon_count. Default: all of them.
+    void setPhotonShare(uint64_t first, uint64_t count) {
+        if (first > settings_.photonCount || count > settings_.photonCount - first)
+            throw Error("sppm: a photon share outside the iteration's photons");
+        photonFirst_ = first;
+        photonShare_ = count;
+    }
     /// Per pixel the mean over its entries of Ld / ldCount + τ / (iterations · photon_count · π R²).
     virtual Image develop() const = 0;
     /// Host copy of the statistics (row-major pixels, `entriesPerPixel()` entries each).
@@ -89,6 +116,7 @@ protected:
     SppmSettings settings_;
     SppmStats stats_;
     int width_ = 0, height_ = 0;
+    uint64_t photonFirst_ = 0, photonShare_ = 0;  // the photons this driver traces per iteration
 };
 
 /// The driver for device Exec; throws caustica::Error for scenes it cannot render.
@@ -138,6 +166,7 @@ public:
         m_ = Buffer<uint64_t>(d, n);
         rayBlocks_ = Buffer<uint64_t>(d, size_t((settings_.photonCount + 1023) / 1024));
         counter_ = Buffer<uint64_t>(d, 1);
+        photonShare_ = settings_.photonCount;
         if (!(settings_.initialRadius > 0)) settings_.initialRadius = autoRadius(scene);
         sppm_detail::initStats(Exec{}, n, double(settings_.initialRadius), stats_buf_.data(), phi_.data(), m_.data());
         bufferBytes_ = n * (sizeof(SppmPixel) + sizeof(SppmVisiblePoint) + 5 * sizeof(uint32_t) + sizeof(Vec3f) +
@@ -147,7 +176,7 @@ public:
         stats_.meanRadius = settings_.initialRadius;
     }
 
-    void iterate() override {
+    void tracePhotons() override {
         using Clock = std::chrono::steady_clock;
         const uint64_t iteration = stats_.iterations;
         auto t0 = Clock::now();
@@ -168,13 +197,30 @@ public:
             else
                 gatherPass(iteration, count);
         }
-        auto t3 = Clock::now();
+        stats_.photonPaths += photonShare_;
+    }
+
+    void update() override {
+        using Clock = std::chrono::steady_clock;
+        auto t0 = Clock::now();
         sppm_detail::updateStats(Exec{}, entryCount(), double(settings_.alpha),
-                                 settings_.radiusSchedule == RadiusSchedule::Global, iteration + 1, fixed_,
+                                 settings_.radiusSchedule == RadiusSchedule::Global, stats_.iterations + 1, fixed_,
                                  stats_buf_.data(), phi_.data(), m_.data());
-        stats_.photonPaths += settings_.photonCount;
         ++stats_.iterations;
-        stats_.updateSeconds += std::chrono::duration<double>(Clock::now() - t3).count();
+        stats_.updateSeconds += std::chrono::duration<double>(Clock::now() - t0).count();
+    }
+
+    std::vector<uint64_t> photonSums() const override {
+        std::vector<uint64_t> sums = phi_.toHost();
+        const std::vector<uint64_t> counts = m_.toHost();
+        sums.insert(sums.end(), counts.begin(), counts.end());
+        return sums;
+    }
+    void setPhotonSums(const std::vector<uint64_t>& sums) override {
+        const size_t n = entryCount();
+        if (sums.size() != 4 * n) throw Error("sppm: the photon sums do not fit the image");
+        phi_.copyFromHost(std::vector<uint64_t>(sums.begin(), sums.begin() + std::ptrdiff_t(3 * n)));
+        m_.copyFromHost(std::vector<uint64_t>(sums.begin() + std::ptrdiff_t(3 * n), sums.end()));
     }
 
     Image develop() const override {
@@ -289,8 +335,8 @@ private:
             scene_.visit(Exec{}, [&](const auto& intersector) {
                 sppm_detail::depositPhotons(Exec{}, view, intersector, lookup, points_.data(), list_.data(),
                                             settings_.path, photonDepth(), settings_.roughnessThreshold, fixed_,
-                                            seed_, iteration, settings_.photonCount, phi_.data(), m_.data(),
-                                            rayBlocks_.data());
+                                            seed_, iteration, photonFirst_, photonShare_, phi_.data(),
+                                            m_.data(), rayBlocks_.data());
             });
             for (uint64_t r : rayBlocks_.toHost()) stats_.rays += r;
             stats_.photonSeconds += std::chrono::duration<double>(Clock::now() - t1).count();
@@ -307,8 +353,8 @@ private:
             const SceneView& view = scene_.view();
             scene_.visit(Exec{}, [&](const auto& intersector) {
                 sppm_detail::storePhotons(Exec{}, view, intersector, settings_.path, photonDepth(),
-                                          settings_.roughnessThreshold, seed_, iteration, settings_.photonCount,
-                                          store_.data(), uint64_t(store_.size()), counter_.data(),
+                                          settings_.roughnessThreshold, seed_, iteration, photonFirst_,
+                                          photonShare_, store_.data(), uint64_t(store_.size()), counter_.data(),
                                           rayBlocks_.data());
             });
             for (uint64_t r : rayBlocks_.toHost()) stats_.rays += r;

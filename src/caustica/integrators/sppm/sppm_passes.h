@@ -94,17 +94,17 @@ CA_HD void photonPath(const SceneView& view, const Intersector& accel, size_t i,
     sppmAtomicAdd(rayBlocks + i / 1024, rays);
 }
 
-/// Direction "deposit": each photon adds into every visible point whose sphere covers its hit
-/// (`lookup` over the visible points' spheres; j indexes `list`).
+/// Direction "deposit": each photon of [first, first + photons) adds into every visible point
+/// whose sphere covers its hit (`lookup` over the visible points' spheres; j indexes `list`).
 template <class Exec, class Intersector, class Lookup>
 void depositPhotons(Exec exec, const SceneView& view, const Intersector& accel, const Lookup& lookup,
                     const SppmVisiblePoint* points, const uint32_t* list, PathSettings path, uint32_t maxDepth,
-                    Float specularBelow, SppmFixedPoint fixed, uint64_t seed, uint64_t iteration, uint64_t photons,
-                    uint64_t* phi, uint64_t* m, uint64_t* rayBlocks) {
+                    Float specularBelow, SppmFixedPoint fixed, uint64_t seed, uint64_t iteration, uint64_t first,
+                    uint64_t photons, uint64_t* phi, uint64_t* m, uint64_t* rayBlocks) {
     launch(
         exec, "sppm.photons", size_t(photons),
         [=] CA_HD(size_t i) {
-            photonPath(view, accel, i, iteration, seed, path, maxDepth, specularBelow, rayBlocks,
+            photonPath(view, accel, size_t(first) + i, iteration, seed, path, maxDepth, specularBelow, rayBlocks,
                        [&](const SurfaceInteraction& si, Vec3f wo, const Spectrum& flux, uint32_t k) {
                            lookup.forEachSphereCovering(si.p, [&](uint32_t j) {
                                const SppmVisiblePoint& vp = points[list[j]];
@@ -116,16 +116,17 @@ void depositPhotons(Exec exec, const SceneView& view, const Intersector& accel, 
         16);
 }
 
-/// Direction "gather", first half: each photon path appends its photons to `store` (at most
-/// `capacity`; `counter` counts them all, so the caller sees an overflow and traces again).
+/// Direction "gather", first half: each photon path of [first, first + photons) appends its
+/// photons to `store` (at most `capacity`; `counter` counts them all, so the caller sees an
+/// overflow and traces again).
 template <class Exec, class Intersector>
 void storePhotons(Exec exec, const SceneView& view, const Intersector& accel, PathSettings path, uint32_t maxDepth,
-                  Float specularBelow, uint64_t seed, uint64_t iteration, uint64_t photons, SppmPhoton* store,
-                  uint64_t capacity, uint64_t* counter, uint64_t* rayBlocks) {
+                  Float specularBelow, uint64_t seed, uint64_t iteration, uint64_t first, uint64_t photons,
+                  SppmPhoton* store, uint64_t capacity, uint64_t* counter, uint64_t* rayBlocks) {
     launch(
         exec, "sppm.store", size_t(photons),
         [=] CA_HD(size_t i) {
-            photonPath(view, accel, i, iteration, seed, path, maxDepth, specularBelow, rayBlocks,
+            photonPath(view, accel, size_t(first) + i, iteration, seed, path, maxDepth, specularBelow, rayBlocks,
                        [&](const SurfaceInteraction& si, Vec3f wo, const Spectrum& flux, uint32_t k) {
                            const uint64_t slot = sppmAtomicFetchAdd(counter, 1);
                            if (slot < capacity) store[slot] = SppmPhoton{si.p, wo, si.ng, flux, k};

@@ -2,7 +2,7 @@
 // lock-step iteration of every chain per step; the checkpoint payload is the MLT state
 // (integrators/mlt/mlt_checkpoint.h).
 //
-// Over ranks (SessionContext::comm; docs/MPI_INTEGRATORS.md): the bootstrap samples are split by
+// Over ranks (SessionContext::comm; docs/MPI.md): the bootstrap samples are split by
 // global index and gathered, so b and the chain starts are one process's; each rank steps the
 // chains of its share of the global chain indices (their streams keyed by them); the iteration
 // counters are summed every step (b and the counters are the whole render's on every rank);

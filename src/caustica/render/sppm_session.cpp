@@ -7,7 +7,7 @@
 // chosen by global photon index (rank r: [r P / R, (r + 1) P / R) of P = photon_count), the eye
 // pass the same on every rank; the photon sums (64-bit fixed point) are summed over the ranks
 // before the update, so every rank applies the same update and holds the same state, and the
-// image equals one process's to the bit (docs/MPI_INTEGRATORS.md).
+// image equals one process's to the bit (docs/MPI.md).
 #include <cstdio>
 #include <memory>
 #include <span>

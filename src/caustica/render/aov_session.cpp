@@ -31,6 +31,7 @@ AovSession::AovSession(const Scene& scene, const Accel& accel, Device device, ui
         driver_ = onDevice(
             device, [&](auto exec) { return makeAovPass<decltype(exec)>(scene, accel, layout_); });
         film_.emplace(w, h, Filter::fromDesc(scene.film.filter), layout_.channels);
+        film_->setEyeWidth(scene.film.eyeWidth);  // a stereo film: the filter stops at the seam
     }
 }
 

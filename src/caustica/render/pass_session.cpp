@@ -53,6 +53,8 @@ public:
         int k = samplesPerPass_;
         if (samplesLeft > 0) k = std::min(k, int(std::ceil(samplesLeft)));
         if (k != pass_.samplesPerPixel) pass_ = SamplePass(film_.width(), film_.height(), k);
+        if (aovChannels_ > 0 && k != aovPass_.samplesPerPixel)
+            aovPass_ = AovSamplePass(film_.width(), film_.height(), k, aovChannels_);  // the driver holds &aovPass_
         counters_.rays += driver_->render(seed_, int(film_.samplesPerPixel()), pass_);
         film_.addPass(pass_);
         counters_.samples += uint64_t(film_.width()) * uint64_t(film_.height()) * uint64_t(k);
@@ -71,6 +73,12 @@ public:
     std::string description() const override { return description_; }
     bool rendersPixelPasses() const override { return true; }
     const SamplePass* lastPass() const override { return &pass_; }
+    bool shareFirstHits(const AovLayout& layout) override {
+        if (!driver_->shareFirstHits(layout, &aovPass_)) return false;
+        aovChannels_ = layout.channels;
+        return true;
+    }
+    const AovSamplePass* lastAovPass() const override { return aovChannels_ > 0 ? &aovPass_ : nullptr; }
     void printSummary(std::FILE* out) const override {
         if (gpu_) std::fprintf(out, "GPU memory  peak %s allocated\n", formatBytes(gpuPeakBytes()).c_str());
     }
@@ -83,6 +91,8 @@ private:
     int samplesPerPass_ = 1;
     bool gpu_ = false;
     SamplePass pass_;
+    int aovChannels_ = 0;    // > 0: the driver writes the AOVs of its camera rays into aovPass_
+    AovSamplePass aovPass_;
     SessionCounters counters_;
     std::string description_;
 };

@@ -17,6 +17,8 @@ struct FirstHitIntersector {
     bool found = false;   // whether `hit` is one
     bool stored = false;  // whether trace() ran
 
+    CA_HD explicit FirstHitIntersector(const Intersector& wrapped) : accel(wrapped) {}
+
     /// Traces `r` once through the wrapped intersector and keeps the answer.
     CA_HD void trace(const Ray& r) {
         ray = r;

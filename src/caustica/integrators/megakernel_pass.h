@@ -56,9 +56,10 @@ struct AovOutput {
     float* values = nullptr;
 };
 
-/// One work item per pass slot: slot = pixel * k + s. With AOVs the camera ray is traced first,
-/// its hit gives the AOVs and answers the radiance estimate's query for it.
-template <class Exec, class Intersector, class Radiance>
+/// One work item per pass slot: slot = pixel * k + s. WithAovs: the camera ray is traced first,
+/// its hit gives the AOVs and answers the radiance estimate's query for it. Two kernels, so that
+/// the one without AOVs keeps its registers (a GPU sizes them per kernel).
+template <bool WithAovs, class Exec, class Intersector, class Radiance>
 void tracePass(Exec exec, const char* name, const SceneView& view, const Intersector& accel,
                const Radiance& radiance, uint64_t seed, int firstSample, int width, int k, size_t slots,
                PixelSample* samples, uint32_t* rays, AovOutput aovs) {
@@ -66,13 +67,16 @@ void tracePass(Exec exec, const char* name, const SceneView& view, const Interse
         CameraSample c = cameraSample(view.camera, slot / size_t(k), width,
                                       uint64_t(firstSample) + slot % size_t(k), seed);
         uint32_t rayCount = 0;
-        FirstHitIntersector<Intersector> first{accel};
-        if (aovs.values) {
+        Spectrum L;
+        if (WithAovs) {  // not `if constexpr`: nvcc's extended lambdas cannot first-capture there
+            FirstHitIntersector<Intersector> first{accel};
             first.trace(c.ray);
             aovs.positions[slot] = c.pos;
             aovValues(view, c.ray, first.hit, aovs.layout, aovs.values + slot * size_t(aovs.layout.channels));
+            L = radiance(view, first, c.sampler, c.ray, rayCount);
+        } else {
+            L = radiance(view, accel, c.sampler, c.ray, rayCount);
         }
-        const Spectrum L = radiance(view, first, c.sampler, c.ray, rayCount);
         samples[slot] = PixelSample{c.pos, L};
         rays[slot] = rayCount;
     }, 16);
@@ -105,9 +109,14 @@ public:
             aovTarget_.bind(*aovs_, aovOut.positions, aovOut.values);
         }
         scene_.visit(Exec{}, [&](const auto& intersector) {
-            megakernel_detail::tracePass(Exec{}, name_, scene_.view(), intersector, radiance_, seed,
-                                         firstSampleIndex, pass.width, pass.samplesPerPixel, slots, out,
-                                         rays_.data(), aovOut);
+            if (aovs_)
+                megakernel_detail::tracePass<true>(Exec{}, name_, scene_.view(), intersector, radiance_, seed,
+                                                   firstSampleIndex, pass.width, pass.samplesPerPixel, slots,
+                                                   out, rays_.data(), aovOut);
+            else
+                megakernel_detail::tracePass<false>(Exec{}, name_, scene_.view(), intersector, radiance_, seed,
+                                                    firstSampleIndex, pass.width, pass.samplesPerPixel, slots,
+                                                    out, rays_.data(), aovOut);
         });
         const uint64_t rays = reduceSum(Exec::device(), Span<const uint32_t>(rays_.data(), slots));
         if constexpr (Exec::kind != DeviceKind::Cpu) samples_.copyToHost(pass.span());

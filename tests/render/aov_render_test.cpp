@@ -140,6 +140,31 @@ TEST(AovRender, EveryIntegratorFillsTheAovs) {
     }
 }
 
+// path, direct and whitted trace each camera ray once for the image and the AOVs: the image and
+// the rays counted are those of a render without AOVs, and the AOVs those of the separate AOV pass
+// (the wavefront path tracer, which shares no hits, still runs it) bit for bit.
+TEST(AovRender, PixelPassesTraceTheCameraRayOnceForImageAndAovs) {
+    TempDir dir;
+    auto run = [&](const std::string& aovs, const std::string& integrator, const std::string& mode) {
+        RenderRequest r = request(aovs, integrator);
+        r.pathMode = mode;
+        auto renderer = makeRenderer(dir, planeScene(kPath), r);
+        while (!renderer->finished()) renderer->step();
+        return renderer;
+    };
+    const auto wavefront = run(kAllGeometric, "path", "wavefront");
+    for (const char* integrator : {"path", "direct", "whitted"}) {
+        SCOPED_TRACE(integrator);
+        const auto with = run(kAllGeometric, integrator, "megakernel");
+        const auto without = run("", integrator, "megakernel");
+        EXPECT_TRUE(with->develop().rgb == without->develop().rgb);
+        EXPECT_EQ(with->stats().rays, without->stats().rays);
+        EXPECT_TRUE(with->developAovs().values == wavefront->developAovs().values);
+    }
+    // The wavefront's AOV pass adds one ray per sample.
+    EXPECT_EQ(wavefront->stats().rays, run("", "path", "wavefront")->stats().rays + 16u * 16u * 4u);
+}
+
 // The variance AOV is s² / n of each pixel's own samples: recomputed here from the passes.
 TEST(AovRender, VarianceIsTheSampleVarianceOfThePixelMean) {
     TempDir dir;

@@ -2,17 +2,22 @@
 // eye of a stereo render equals a mono render of that eye's camera at the eye's seed (path in both
 // execution modes, direct, sppm's left eye: one shared photon pass), MLT's chains cover both
 // eyes, the rig is part of the checkpoint's identity, and the stereo outputs (multi-view EXR,
-// separate EXRs, anaglyph) read back as the two halves of the image.
+// separate EXRs, anaglyph) read back as the two halves of the image. AOVs: each eye's equal a
+// mono render's of that eye, go into each view of the outputs, and --denoise works eye by eye.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
 #include "caustica/integrators/mlt/mlt_target.h"
+#include "caustica/io/exr_feature_layers.h"
+#include "caustica/io/exr_layers.h"
 #include "caustica/io/exr_multiview.h"
 #include "caustica/io/image_io.h"
 #include "caustica/io/scene_loader.h"
+#include "caustica/render/render_denoise.h"
 #include "caustica/render/render_outputs.h"
 #include "caustica/render/render_run.h"
 #include "caustica/render/renderer.h"
@@ -75,21 +80,39 @@ protected:
         return r;
     }
     static StereoSettings stereo(StereoMode mode) { return StereoSettings{mode, 0.1f, 1.5f}; }
-    Image render(const RenderRequest& r) const {
-        Renderer renderer(loadScene(path("scene.xml")), r);
-        while (!renderer.finished()) renderer.step();
-        return renderer.develop();
+    static std::unique_ptr<Renderer> finished(Scene scene, const RenderRequest& r) {
+        auto renderer = std::make_unique<Renderer>(std::move(scene), r);
+        while (!renderer->finished()) renderer->step();
+        return renderer;
     }
+    std::unique_ptr<Renderer> renderer(const RenderRequest& r) const { return finished(loadScene(path("scene.xml")), r); }
+    Image render(const RenderRequest& r) const { return renderer(r)->develop(); }
     /// A mono render from eye `eye`'s camera at that eye's seed.
-    Image monoEye(RenderRequest r, const StereoSettings& s, int eye) const {
+    std::unique_ptr<Renderer> monoEyeRenderer(RenderRequest r, const StereoSettings& s, int eye) const {
         Scene scene = loadScene(path("scene.xml"));
         Scene rigged = scene;
         applyStereo(rigged, s);
         scene.camera = eyeCamera(rigged.camera, eye);
         r.seed = stereoEyeSeed(kSeed, eye);
-        Renderer renderer(std::move(scene), r);
-        while (!renderer.finished()) renderer.step();
-        return renderer.develop();
+        return finished(std::move(scene), r);
+    }
+    Image monoEye(const RenderRequest& r, const StereoSettings& s, int eye) const {
+        return monoEyeRenderer(r, s, eye)->develop();
+    }
+    /// The AOVs of one eye against a mono render's: the left eye bit for bit, the right eye up to
+    /// the rounding of its film positions (expectEyeEquals).
+    static void expectEyeAovsEqual(const AovImage& stereoAovs, const AovImage& mono, int eye) {
+        const AovImage eyeAovs = stereoEyeAovs(stereoAovs, eye);
+        ASSERT_EQ(eyeAovs.width, mono.width);
+        ASSERT_EQ(eyeAovs.channels, mono.channels);
+        ASSERT_EQ(eyeAovs.values.size(), mono.values.size());
+        for (size_t i = 0; i < mono.values.size(); ++i) {
+            if (eye == 0)
+                ASSERT_EQ(eyeAovs.values[i], mono.values[i]) << "eye 0 value " << i;
+            else
+                ASSERT_NEAR(eyeAovs.values[i], mono.values[i], 1e-4f * std::max(std::abs(mono.values[i]), 1.0f))
+                    << "eye 1 value " << i << " (" << mono.channels[i % mono.channels.size()] << ")";
+        }
     }
     /// The left eye bit for bit; the right eye up to rounding: its film positions are x + W +
     /// jitter, rounded to the float grid near x + W, the mono render's to the grid near x.
@@ -271,6 +294,96 @@ TEST_F(StereoRender, BadStereoOutputsAreRefusedBeforeRendering) {
     s.outputs = {path("x.exr")};
     s.stereo.enabled = true;
     EXPECT_THROW(writeRenderImages(s.outputs, mono.develop(), mono, s.stereo), Error);
+}
+
+TEST_F(StereoRender, EachEyesAovsEqualAMonoRenderOfThatEye) {
+    // path: the AOV pass traces the pass's camera samples (variance included); sppm: one AOV
+    // sample per step, the left eye exactly.
+    const char* const aovs = "dd:depth,nn:sh_normal,pp:position,a:albedo,s:shape_index,v:variance";
+    for (StereoMode mode : {StereoMode::OffAxis, StereoMode::ToeIn}) {
+        RenderRequest r = request("path");
+        r.aovs = aovs;
+        r.stereo = stereo(mode);
+        const AovImage both = renderer(r)->developAovs();
+        ASSERT_EQ(both.width, 2 * kEyeWidth);
+        RenderRequest m = request("path");
+        m.aovs = aovs;
+        for (int eye = 0; eye < 2; ++eye) expectEyeAovsEqual(both, monoEyeRenderer(m, r.stereo, eye)->developAovs(), eye);
+    }
+    RenderRequest r = request("sppm", 3);
+    r.aovs = "dd:depth,nn:sh_normal";
+    r.stereo = stereo(StereoMode::OffAxis);
+    const AovImage both = renderer(r)->developAovs();
+    RenderRequest m = request("sppm", 3);
+    m.aovs = r.aovs;
+    expectEyeAovsEqual(both, monoEyeRenderer(m, r.stereo, 0)->developAovs(), 0);
+    // sppm refuses the variance AOV with stereo as without.
+    r.aovs = "v:variance";
+    EXPECT_THROW(Renderer(loadScene(path("scene.xml")), r), Error);
+}
+
+TEST_F(StereoRender, AovsGoIntoEachViewOfTheOutputs) {
+    RenderRequest r = request("path", 2);
+    r.aovs = "dd.y:depth,nn:sh_normal";
+    r.stereo = stereo(StereoMode::OffAxis);
+    RunControl c;
+    c.outputs = {path("pair.exr")};
+    c.quiet = true;
+    c.catchInterrupts = false;
+    c.stereo.enabled = true;
+    prepareRun(c);
+    Renderer multiView(loadScene(path("scene.xml")), r);
+    runRender(multiView, c);
+    const AovImage aovs = multiView.developAovs();
+    const StereoImagePair views = readMultiViewExr(path("pair.exr"));
+    ASSERT_EQ(views.leftAovs.spec.text(), "dd.y:depth,nn:sh_normal");
+    EXPECT_TRUE(views.leftAovs.values == stereoEyeAovs(aovs, 0).values);
+    EXPECT_TRUE(views.rightAovs.values == stereoEyeAovs(aovs, 1).values);
+    EXPECT_NE(views.leftAovs.values, views.rightAovs.values);
+
+    // Separate files: each eye's file is a mono render's layered EXR.
+    c.outputs = {path("eyes.exr")};
+    c.stereo.separate = true;
+    Renderer separate(loadScene(path("scene.xml")), r);
+    runRender(separate, c);
+    for (int eye = 0; eye < 2; ++eye) {
+        const ExrLayers layers = readExrLayers(path(eye == 0 ? "eyes.left.exr" : "eyes.right.exr"));
+        EXPECT_EQ(layers.aovs.channels, aovs.channels);
+        EXPECT_TRUE(layers.aovs.values == stereoEyeAovs(aovs, eye).values) << "eye " << eye;
+        expectEyeEquals(separate.develop(), layers.image, eye);
+    }
+}
+
+TEST_F(StereoRender, DenoiseWorksEyeByEye) {
+    RenderRequest r = request("path", 4);
+    r.stereo = stereo(StereoMode::OffAxis);
+    r.denoiseGuides = true;
+    RunControl c;
+    c.outputs = {path("pair.exr"), path("pair.png")};
+    c.quiet = true;
+    c.catchInterrupts = false;
+    c.stereo.enabled = true;
+    c.denoise = DenoiseSettings{};
+    prepareRun(c);
+    Renderer renderer(loadScene(path("scene.xml")), r);
+    const RunResult result = runRender(renderer, c);
+    EXPECT_EQ(result.written, (std::vector<std::string>{path("pair.exr"), path("pair.png"), path("pair.denoised.exr"),
+                                                        path("pair.denoised.png")}));
+    // Each eye is denoised alone with its own guides: what a mono render of the eye would get.
+    const Image image = renderer.develop();
+    const AovImage aovs = renderer.developAovs();
+    const StereoImagePair denoised = readMultiViewExr(path("pair.denoised.exr"));
+    for (int eye = 0; eye < 2; ++eye) {
+        const Image expected =
+            denoise(stereoEyeImage(image, eye), featuresFromAovs(stereoEyeAovs(aovs, eye)), *c.denoise);
+        EXPECT_TRUE((eye == 0 ? denoised.left : denoised.right).rgb == expected.rgb) << "eye " << eye;
+    }
+    EXPECT_EQ(readImage(path("pair.denoised.png")).width, 2 * kEyeWidth);
+    // The denoised eye files are checked before rendering too.
+    c.stereo.separate = true;
+    c.outputs = {path("eyes.exr")};
+    fs::create_directories(path("eyes.denoised.right.exr"));
+    EXPECT_THROW(prepareRun(c), Error);
 }
 
 }  // namespace

@@ -43,6 +43,13 @@ AovFilm::AovFilm(int width, int height, const Filter& filter, int channels, Devi
     invalidScratch_.assign(size_t(width) * size_t(height), 0);
 }
 
+void AovFilm::setEyeWidth(int eyeWidth) {
+    if (eyeWidth != 0 && 2 * eyeWidth != width_)
+        throw Error("stereo aov film: eye width " + std::to_string(eyeWidth) +
+                    " is not half the film width " + std::to_string(width_));
+    eyeWidth_ = eyeWidth;
+}
+
 void AovFilm::addPass(const AovSamplePass& pass) {
     const size_t pixels = size_t(width_) * size_t(height_);
     if (pass.width != width_ || pass.height != height_ || pass.channels != channels_ ||
@@ -54,7 +61,8 @@ void AovFilm::addPass(const AovSamplePass& pass) {
     if (pass.samplesPerPixel == 0) return;
     AovSplatView view;
     view.grid =
-        gatherGrid(width_, height_, pass.samplesPerPixel, filter_, weightScratch_, invalidScratch_);
+        gatherGrid(width_, height_, pass.samplesPerPixel, filter_, weightScratch_, invalidScratch_,
+                   eyeWidth_);
     view.positions = pass.positions.data();
     view.values = pass.values.data();
     view.channels = channels_;

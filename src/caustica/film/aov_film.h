@@ -59,6 +59,9 @@ public:
     int width() const { return width_; }
     int height() const { return height_; }
     int channels() const { return channels_; }
+    /// Stereo: one eye's width (the filter treats the seam at x = eyeWidth as a border, as the RGB
+    /// Film does); 0 mono. Throws caustica::Error unless 0 or half the width.
+    void setEyeWidth(int eyeWidth);
     /// Splats one pass (its size and channel count must match; throws caustica::Error).
     /// Samples with a non-finite value or a position outside their pixel are dropped.
     void addPass(const AovSamplePass& pass);
@@ -73,7 +76,7 @@ public:
     void load(std::istream& in);
 
 private:
-    int width_ = 0, height_ = 0, channels_ = 0;
+    int width_ = 0, height_ = 0, channels_ = 0, eyeWidth_ = 0;
     Filter filter_;
     Device device_;
     std::vector<double> sums_;  // (channels + 1) per pixel: sum(w v_c) ..., sum(w)

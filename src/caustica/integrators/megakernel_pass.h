@@ -7,6 +7,8 @@
 #include <cstdint>
 
 #include "caustica/accel/device_scene.h"
+#include "caustica/integrators/aov/aov_pass.h"
+#include "caustica/integrators/first_hit_intersector.h"
 #include "caustica/integrators/pass_driver.h"
 #include "caustica/parallel/buffer.h"
 #include "caustica/parallel/primitives.h"
@@ -47,16 +49,34 @@ CA_HD_INLINE CameraSample cameraSample(const Camera& camera, size_t pixel, int w
 
 namespace megakernel_detail {
 
-/// One work item per pass slot: slot = pixel * k + s.
-template <class Exec, class Intersector, class Radiance>
+/// Where a pass writes AOVs of its camera rays (aov_kernel.h); values null: none.
+struct AovOutput {
+    AovLayout layout;
+    Vec2f* positions = nullptr;
+    float* values = nullptr;
+};
+
+/// One work item per pass slot: slot = pixel * k + s. WithAovs: the camera ray is traced first,
+/// its hit gives the AOVs and answers the radiance estimate's query for it. Two kernels, so that
+/// the one without AOVs keeps its registers (a GPU sizes them per kernel).
+template <bool WithAovs, class Exec, class Intersector, class Radiance>
 void tracePass(Exec exec, const char* name, const SceneView& view, const Intersector& accel,
                const Radiance& radiance, uint64_t seed, int firstSample, int width, int k, size_t slots,
-               PixelSample* samples, uint32_t* rays) {
+               PixelSample* samples, uint32_t* rays, AovOutput aovs) {
     launch(exec, name, slots, [=] CA_HD(size_t slot) {
         CameraSample c = cameraSample(view.camera, slot / size_t(k), width,
                                       uint64_t(firstSample) + slot % size_t(k), seed);
         uint32_t rayCount = 0;
-        const Spectrum L = radiance(view, accel, c.sampler, c.ray, rayCount);
+        Spectrum L;
+        if (WithAovs) {  // not `if constexpr`: nvcc's extended lambdas cannot first-capture there
+            FirstHitIntersector<Intersector> first{accel};
+            first.trace(c.ray);
+            aovs.positions[slot] = c.pos;
+            aovValues(view, c.ray, first.hit, aovs.layout, aovs.values + slot * size_t(aovs.layout.channels));
+            L = radiance(view, first, c.sampler, c.ray, rayCount);
+        } else {
+            L = radiance(view, accel, c.sampler, c.ray, rayCount);
+        }
         samples[slot] = PixelSample{c.pos, L};
         rays[slot] = rayCount;
     }, 16);
@@ -82,16 +102,33 @@ public:
         }
         // The CPU's kernels write the host pass directly; a GPU's write device memory, copied after.
         PixelSample* out = Exec::kind == DeviceKind::Cpu ? pass.samples.data() : samples_.data();
+        megakernel_detail::AovOutput aovOut{aovLayout_};
+        if (aovs_) {
+            if (aovs_->slots() != slots || aovs_->channels != aovLayout_.channels)
+                throw Error("internal: the AOV pass does not match the sample pass");
+            aovTarget_.bind(*aovs_, aovOut.positions, aovOut.values);
+        }
         scene_.visit(Exec{}, [&](const auto& intersector) {
-            megakernel_detail::tracePass(Exec{}, name_, scene_.view(), intersector, radiance_, seed,
-                                         firstSampleIndex, pass.width, pass.samplesPerPixel, slots, out,
-                                         rays_.data());
+            if (aovs_)
+                megakernel_detail::tracePass<true>(Exec{}, name_, scene_.view(), intersector, radiance_, seed,
+                                                   firstSampleIndex, pass.width, pass.samplesPerPixel, slots,
+                                                   out, rays_.data(), aovOut);
+            else
+                megakernel_detail::tracePass<false>(Exec{}, name_, scene_.view(), intersector, radiance_, seed,
+                                                    firstSampleIndex, pass.width, pass.samplesPerPixel, slots,
+                                                    out, rays_.data(), aovOut);
         });
         const uint64_t rays = reduceSum(Exec::device(), Span<const uint32_t>(rays_.data(), slots));
         if constexpr (Exec::kind != DeviceKind::Cpu) samples_.copyToHost(pass.span());
+        if (aovs_) aovTarget_.copyBack(*aovs_);
         return rays;
     }
     size_t sceneBytes() const override { return scene_.bytes(); }
+    bool shareFirstHits(const AovLayout& layout, AovSamplePass* aovs) override {
+        aovLayout_ = layout;
+        aovs_ = aovs;
+        return true;
+    }
 
 private:
     DeviceScene scene_;
@@ -99,6 +136,9 @@ private:
     const char* name_;
     Buffer<uint32_t> rays_;
     Buffer<PixelSample> samples_;  // a GPU's
+    AovLayout aovLayout_;
+    AovSamplePass* aovs_ = nullptr;  // the caller's, while it shares first hits
+    AovPassTarget<Exec> aovTarget_;
 };
 
 }  // namespace caustica

@@ -9,7 +9,9 @@
 #include <memory>
 
 #include "caustica/accel/accel.h"
+#include "caustica/film/aov_film.h"
 #include "caustica/film/film.h"
+#include "caustica/integrators/aov/aov_kernel.h"
 #include "caustica/integrators/direct/direct_kernel.h"
 #include "caustica/integrators/path/gpu_memory.h"
 #include "caustica/integrators/path/path_kernel.h"
@@ -26,6 +28,12 @@ public:
     /// indices from `firstSampleIndex`, random streams keyed by (pixel, sample index, seed), into
     /// slot pixel * K + s of `pass`. Returns the rays traced (closest hit + shadow).
     virtual uint64_t render(uint64_t seed, int firstSampleIndex, SamplePass& pass) = 0;
+    /// From the next render() on, also writes the AOVs of `layout` (aov_kernel.h) of every
+    /// sample's camera ray into `aovs` (the caller sizes it like each pass; null stops it): the
+    /// radiance estimate takes the first hit of that same query (first_hit_intersector.h), so the
+    /// camera ray is traced once for both. False, and nothing written, for a driver that cannot
+    /// (the wavefront path tracer).
+    virtual bool shareFirstHits(const AovLayout& layout, AovSamplePass* aovs) { return false; }
     /// Device bytes of the scene copy the driver holds (0 on the CPU).
     virtual size_t sceneBytes() const = 0;
 };

@@ -52,6 +52,12 @@ struct ImageFileInfo {
 Image readImage(const std::string& path, const ImageReadOptions& options,
                 ImageFileInfo* info = nullptr);
 
+/// Refuses (caustica::Error naming `path`) an EXR file that OpenEXR should not be given for
+/// reading: a header that claims more than the file holds, an absurd data window, missing or
+/// truncated chunks: the checks readImage makes before it reads pixels, for readers of other
+/// channels (io/exr_layers.h, io/exr_multiview.h).
+void checkExrFile(const std::string& path);
+
 /// Reads an image's metadata: EXR string attributes, PNG tEXt chunks; PFM: always empty.
 ImageMetadata readImageMetadata(const std::string& path);
 

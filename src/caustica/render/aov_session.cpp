@@ -10,7 +10,7 @@
 namespace caustica {
 
 AovSession::AovSession(const Scene& scene, const Accel& accel, Device device, uint64_t seed,
-                       AovSpec spec, const IntegratorSession& session,
+                       AovSpec spec, IntegratorSession& session,
                        const std::string& integrator)
     : scene_(scene),
       spec_(std::move(spec)),
@@ -26,11 +26,16 @@ AovSession::AovSession(const Scene& scene, const Accel& accel, Device device, ui
         variance_.emplace(w, h);
     }
     if (layout_.channels > 0) {
-        if (!device.isCpu() && !accel.bvh())
-            throw Error("a GPU traces rays with caustica's own BVH, not Embree");
-        driver_ = onDevice(
-            device, [&](auto exec) { return makeAovPass<decltype(exec)>(scene, accel, layout_); });
+        sharedFirstHits_ = pixelPasses_ && session.shareFirstHits(layout_);
+        if (!sharedFirstHits_) {
+            if (!device.isCpu() && !accel.bvh())
+                throw Error("a GPU traces rays with caustica's own BVH, not Embree");
+            driver_ = onDevice(device, [&](auto exec) {
+                return makeAovPass<decltype(exec)>(scene, accel, layout_);
+            });
+        }
         film_.emplace(w, h, Filter::fromDesc(scene.film.filter), layout_.channels);
+        film_->setEyeWidth(scene.film.eyeWidth);  // a stereo film: the filter stops at the seam
     }
 }
 
@@ -53,6 +58,13 @@ void AovSession::afterStep(const IntegratorSession& session, double samplesBefor
         k = pass->samplesPerPixel;
         first = uint64_t(std::llround(samplesBefore));
     } else if (first >= kAovSamplesPerPixelCap) {
+        return;
+    }
+    if (sharedFirstHits_) {
+        const AovSamplePass* shared = session.lastAovPass();
+        if (!shared || shared->samplesPerPixel != k)
+            throw Error("internal: the integrator's pass wrote no AOVs for its samples");
+        film_->addPass(*shared);
         return;
     }
     if (pass_.samplesPerPixel != k)

@@ -2,9 +2,11 @@
 // integrator's session the AOV pass (integrators/aov/aov_pass.h) traces camera samples and the
 // N-channel AovFilm reconstructs them with the scene's filter.
 //
-// - path, direct (sessions that render passes of pixel samples): the AOV pass traces exactly the
-//   pass's camera samples (same seed, sample indices, film positions and rays), and the variance
-//   AOV takes the pass's radiance samples (pixel_variance.h).
+// - path, direct, whitted (sessions that render passes of pixel samples): the pass's own kernel
+//   writes the AOVs of its camera rays' first hits (the ray traced once for both; megakernel
+//   drivers), else (the wavefront) the AOV pass traces exactly the pass's camera samples again
+//   (same seed, sample indices, film positions and rays); the variance AOV takes the pass's
+//   radiance samples (pixel_variance.h).
 // - mlt, sppm, ppm: one AOV sample per pixel per step (sample indices 0, 1, ...), up to
 //   kAovSamplesPerPixelCap; the variance AOV is refused (no independent pixel samples).
 // Checkpoints carry the AOV state after the integrator's (Renderer::save/load).
@@ -32,8 +34,10 @@ inline constexpr uint64_t kAovSamplesPerPixelCap = 64;
 class AovSession {
 public:
     /// Throws caustica::Error when `spec` asks for variance and `session` renders no pixel passes.
+    /// Asks `session` to share its camera rays' first hits (IntegratorSession::shareFirstHits);
+    /// where it cannot, the AOV pass traces the camera rays again.
     AovSession(const Scene& scene, const Accel& accel, Device device, uint64_t seed, AovSpec spec,
-               const IntegratorSession& session, const std::string& integrator);
+               IntegratorSession& session, const std::string& integrator);
     ~AovSession();
 
     /// The AOV samples of the step the session just made; `samplesBefore`: the session's samples
@@ -57,7 +61,8 @@ private:
     uint64_t seed_ = 0;
     bool pixelPasses_ = false;
     AovLayout layout_;
-    std::unique_ptr<AovPassDriver> driver_;  // null when only variance is asked for
+    bool sharedFirstHits_ = false;           // the session writes the AOVs of its own camera rays
+    std::unique_ptr<AovPassDriver> driver_;  // null when only variance is asked for, or shared
     std::optional<AovFilm> film_;
     std::optional<PixelVariance> variance_;
     AovSamplePass pass_;

@@ -17,6 +17,8 @@
 namespace caustica {
 
 struct SamplePass;
+struct AovSamplePass;
+struct AovLayout;
 
 /// Counters of the current run (not of earlier runs of a resumed render).
 struct SessionCounters {
@@ -56,6 +58,11 @@ public:
     /// variance AOV its radiance.
     virtual bool rendersPixelPasses() const { return false; }
     virtual const SamplePass* lastPass() const { return nullptr; }
+    /// Asks a session of pixel passes to write the AOVs of `layout` for its own camera rays with
+    /// each step (traced once for the image and the AOVs); lastAovPass() then shows them. False
+    /// where it cannot (the wavefront path tracer): the AOV session traces them itself.
+    virtual bool shareFirstHits(const AovLayout& layout) { (void)layout; return false; }
+    virtual const AovSamplePass* lastAovPass() const { return nullptr; }
 };
 
 }  // namespace caustica

@@ -65,6 +65,8 @@ public:
         if (comm_.size() > 1) return stepOverRanks(samplesLeft);
         const int k = passSamples(samplesLeft);
         if (k != pass_.samplesPerPixel) pass_ = SamplePass(film_.width(), film_.height(), k);
+        if (aovChannels_ > 0 && k != aovPass_.samplesPerPixel)
+            aovPass_ = AovSamplePass(film_.width(), film_.height(), k, aovChannels_);  // the driver holds &aovPass_
         counters_.rays += driver_->render(seed_, int(film_.samplesPerPixel()), pass_);
         film_.addPass(pass_);
         counters_.samples += uint64_t(film_.width()) * uint64_t(film_.height()) * uint64_t(k);
@@ -89,6 +91,12 @@ public:
         return {{"bytes_sent", std::to_string(comm_.bytesSent())},
                 {"bytes_sent_per_iteration", std::to_string(steps_ ? comm_.bytesSent() / steps_ : 0)}};
     }
+    bool shareFirstHits(const AovLayout& layout) override {
+        if (!driver_->shareFirstHits(layout, &aovPass_)) return false;
+        aovChannels_ = layout.channels;
+        return true;
+    }
+    const AovSamplePass* lastAovPass() const override { return aovChannels_ > 0 ? &aovPass_ : nullptr; }
     void printSummary(std::FILE* out) const override {
         if (gpu_) std::fprintf(out, "GPU memory  peak %s allocated\n", formatBytes(gpuPeakBytes()).c_str());
     }
@@ -164,6 +172,8 @@ private:
     int samplesPerPass_ = 1;
     bool gpu_ = false;
     SamplePass pass_;
+    int aovChannels_ = 0;    // > 0: the driver writes the AOVs of its camera rays into aovPass_
+    AovSamplePass aovPass_;
     SessionCounters counters_;
     std::string description_;
 };

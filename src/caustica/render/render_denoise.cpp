@@ -32,15 +32,35 @@ std::string denoisedOutputPath(const std::string& path) {
     return out.string() + ".denoised" + p.extension().string();
 }
 
-void checkDenoiseOutputs(const std::vector<std::string>& outputs, const DenoiseSettings& settings) {
-    for (const std::string& out : outputs) checkImageOutputPath(denoisedOutputPath(out));
+namespace {
+
+/// The denoised outputs' own stereo settings: the render's, without an anaglyph.
+StereoOutputs denoisedStereo(const StereoOutputs& stereo) { return StereoOutputs{stereo.enabled, stereo.separate, ""}; }
+
+Image denoiseRender(const Image& image, const Renderer& renderer, const DenoiseSettings& settings) {
+    const AovImage aovs = renderer.developAovs();
+    if (renderer.scene().film.eyeWidth == 0) return denoise(image, featuresFromAovs(aovs), settings);
+    Image eyes[2];
+    for (int eye = 0; eye < 2; ++eye)
+        eyes[eye] = denoise(stereoEyeImage(image, eye), featuresFromAovs(stereoEyeAovs(aovs, eye)), settings);
+    return sideBySideImage(eyes[0], eyes[1]);
+}
+
+}  // namespace
+
+void checkDenoiseOutputs(const std::vector<std::string>& outputs, const DenoiseSettings& settings,
+                         const StereoOutputs& stereo) {
+    std::vector<std::string> denoised;
+    for (const std::string& out : outputs) denoised.push_back(denoisedOutputPath(out));
+    for (const std::string& file : stereoOutputFiles(denoised, denoisedStereo(stereo))) checkImageOutputPath(file);
     if (settings.method == DenoiseMethod::Oidn && findOidnLibrary(settings.oidn.library).empty())
         throw Error(kOidnNotFound);
 }
 
 std::vector<std::string> writeDenoisedImages(const std::vector<std::string>& outputs, const Image& image,
-                                             const Renderer& renderer, const DenoiseSettings& settings) {
-    const Image denoised = denoise(image, featuresFromAovs(renderer.developAovs()), settings);
+                                             const Renderer& renderer, const DenoiseSettings& settings,
+                                             const StereoOutputs& stereo) {
+    const Image denoised = denoiseRender(image, renderer, settings);
     ImageMetadata meta = renderImageMetadata(renderer);
     meta.entries["caustica.denoiser"] = denoiseMethodName(settings.method);
     const ToneMapDesc& tonemap = renderer.scene().film.tonemap;
@@ -49,6 +69,11 @@ std::vector<std::string> writeDenoisedImages(const std::vector<std::string>& out
     for (const std::string& out : outputs) {
         const std::string path = denoisedOutputPath(out);
         const std::string ext = std::filesystem::path(path).extension().string();
+        if (stereo.enabled && (ext == ".exr" || ext == ".EXR")) {
+            writeStereoExr(path, denoised, meta, stereo.separate);
+            for (std::string& file : stereoOutputFiles({path}, denoisedStereo(stereo))) written.push_back(std::move(file));
+            continue;
+        }
         const bool toneMapped = tonemap.ldr && (ext == ".png" || ext == ".PNG");
         if (toneMapped && ldr.empty()) ldr = displayToPngLinear(toneMap(denoised, tonemap));
         writeImageThroughTemporary(path,

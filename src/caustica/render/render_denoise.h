@@ -8,6 +8,7 @@
 
 #include "caustica/film/aov_layers.h"
 #include "caustica/render/denoise.h"
+#include "caustica/render/stereo_outputs.h"
 
 namespace caustica {
 
@@ -22,12 +23,17 @@ AovSpec withDenoiseGuides(AovSpec spec, bool pixelPasses);
 std::string denoisedOutputPath(const std::string& path);
 
 /// Refuses, before rendering, what would make the denoising at the end fail: an output the
-/// denoised copy cannot be written to, an OIDN that cannot be found.
-void checkDenoiseOutputs(const std::vector<std::string>& outputs, const DenoiseSettings& settings);
+/// denoised copy (a stereo render's: its eye files) cannot be written to, an OIDN that cannot be
+/// found.
+void checkDenoiseOutputs(const std::vector<std::string>& outputs, const DenoiseSettings& settings,
+                         const StereoOutputs& stereo = {});
 
 /// Denoises the render's image with its guide AOVs and writes it to every output's denoised
-/// path (colour only). Returns the paths written.
+/// path (colour only). A stereo render is denoised eye by eye (each with its own guides, so the
+/// filter never mixes the eyes) and written as its outputs are (stereo_outputs.h; no anaglyph).
+/// Returns the paths written.
 std::vector<std::string> writeDenoisedImages(const std::vector<std::string>& outputs, const Image& image,
-                                             const Renderer& renderer, const DenoiseSettings& settings);
+                                             const Renderer& renderer, const DenoiseSettings& settings,
+                                             const StereoOutputs& stereo = {});
 
 }  // namespace caustica

@@ -92,7 +92,8 @@ void writeRenderImages(const std::vector<std::string>& paths, const Image& image
         // Written beside the target and renamed, so a killed render never leaves a torn image.
         const std::string ext = fs::path(p).extension().string();
         if (stereo.enabled && (ext == ".exr" || ext == ".EXR")) {
-            writeStereoExr(p, image, meta, stereo.separate);
+            if (r.hasAovs() && aovs.empty()) aovs = r.developAovs();
+            writeStereoExr(p, image, meta, stereo.separate, aovs);
             continue;
         }
         const bool toneMapped = tonemap.ldr && (ext == ".png" || ext == ".PNG");

@@ -21,7 +21,7 @@ namespace fs = std::filesystem;
 std::optional<CheckpointHeader> prepareRun(const RunControl& c) {
     for (const std::string& out : c.outputs) checkImageOutputPath(out);
     checkStereoOutputFiles(c.outputs, c.stereo);
-    if (c.denoise) checkDenoiseOutputs(c.outputs, *c.denoise);
+    if (c.denoise) checkDenoiseOutputs(c.outputs, *c.denoise, c.stereo);
     if (!c.statsJson.empty()) checkWritablePath(c.statsJson, "statistics");
     if (c.checkpoint.empty()) {
         if (c.resume) throw Error("--resume needs a checkpoint, and this render writes none");
@@ -140,7 +140,7 @@ RunResult runRender(Renderer& renderer, const RunControl& c) {
         // Only the final image is denoised (not every checkpoint's: the filter costs seconds).
         // (A render over several ranks has no denoiser guides: Renderer refuses them.)
         if (c.denoise && root)
-            for (std::string& p : writeDenoisedImages(c.outputs, image, renderer, *c.denoise))
+            for (std::string& p : writeDenoisedImages(c.outputs, image, renderer, *c.denoise, c.stereo))
                 result.written.push_back(std::move(p));
     }
     if (result.cancelled) {

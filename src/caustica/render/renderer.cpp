@@ -124,16 +124,13 @@ Renderer::Renderer(Scene scene, const RenderRequest& request, const CheckpointHe
     for (std::string& w : params.unread()) warnings_.push_back(std::move(w));
     for (IdentityEntry& e : session_->parameters()) identity_.push_back(std::move(e));
     // AOVs: the command line's list, else the scene's aov integrator's. Part of the identity, so
-    // a resume never drops or restarts them.
+    // a resume never drops or restarts them. A stereo render's AOVs cover both eyes (the AOV pass
+    // takes the same per-eye camera samples; its film stops the filter at the seam).
     const bool aovsFromRequest = !request.aovs.empty();
     if (aovsFromRequest || !s.integrator.aovs.empty() || request.denoiseGuides) {
         const std::string where = request.denoiseGuides && !aovsFromRequest && s.integrator.aovs.empty()
                                       ? "--denoise"
                                       : aovsFromRequest ? "--aov" : s.integrator.aovsWhere;
-        // The stereo outputs (multi-view EXR, eye files) have no AOV layers yet: refuse rather
-        // than drop them.
-        if (s.film.eyeWidth > 0)
-            throw Error(where + ": AOVs (and the denoiser's guides) of a stereo render are not supported");
         // The AOV session takes this rank's pass only; the ranks' AOVs are not gathered yet.
         if (comm.size() > 1)
             throw Error(where + ": AOVs (and the denoiser's guides) of a render over several MPI ranks are not "

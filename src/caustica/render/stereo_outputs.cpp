@@ -1,7 +1,9 @@
 #include "caustica/render/stereo_outputs.h"
 
+#include <algorithm>
 #include <filesystem>
 
+#include "caustica/io/exr_layers.h"
 #include "caustica/io/exr_multiview.h"
 #include "caustica/render/render_outputs.h"
 #include "caustica/util/error.h"
@@ -49,6 +51,34 @@ Image stereoEyeImage(const Image& sideBySide, int eye) {
     return out;
 }
 
+AovImage stereoEyeAovs(const AovImage& sideBySide, int eye) {
+    if (sideBySide.width % 2 != 0) throw Error("side-by-side stereo AOVs need an even width");
+    AovImage out;
+    out.width = sideBySide.width / 2;
+    out.height = sideBySide.height;
+    out.spec = sideBySide.spec;
+    out.channels = sideBySide.channels;
+    const size_t C = out.channels.size(), row = size_t(out.width) * C;
+    out.values.resize(size_t(out.height) * row);
+    for (int y = 0; y < out.height; ++y) {
+        const float* src = sideBySide.values.data() + (size_t(y) * 2 + size_t(eye)) * row;
+        std::copy(src, src + row, out.values.begin() + ptrdiff_t(size_t(y) * row));
+    }
+    return out;
+}
+
+Image sideBySideImage(const Image& left, const Image& right) {
+    if (!left.sameSize(right)) throw Error("the two eyes' images differ in size");
+    Image out(2 * left.width, left.height);
+    for (int y = 0; y < out.height; ++y)
+        for (int x = 0; x < left.width; ++x)
+            for (int c = 0; c < 3; ++c) {
+                out.pixel(x, y)[c] = left.pixel(x, y)[c];
+                out.pixel(x + left.width, y)[c] = right.pixel(x, y)[c];
+            }
+    return out;
+}
+
 Image anaglyphImage(const Image& sideBySide) {
     const Image left = stereoEyeImage(sideBySide, 0), right = stereoEyeImage(sideBySide, 1);
     Image out(left.width, left.height);
@@ -71,17 +101,27 @@ void writeAnaglyphPng(const std::string& path, const Image& sideBySide, const Im
     writeImageThroughTemporary(path, [&](const std::string& tmp) { writeImage(tmp, anaglyph, meta); });
 }
 
-void writeStereoExr(const std::string& path, const Image& sideBySide, const ImageMetadata& meta, bool separate) {
-    const Image left = stereoEyeImage(sideBySide, 0), right = stereoEyeImage(sideBySide, 1);
+void writeStereoExr(const std::string& path, const Image& sideBySide, const ImageMetadata& meta, bool separate,
+                    const AovImage& sideBySideAovs) {
+    const Image eyes[2] = {stereoEyeImage(sideBySide, 0), stereoEyeImage(sideBySide, 1)};
+    AovImage eyeAovs[2];
+    if (!sideBySideAovs.empty())
+        for (int eye = 0; eye < 2; ++eye) eyeAovs[eye] = stereoEyeAovs(sideBySideAovs, eye);
     if (!separate) {
-        writeImageThroughTemporary(path, [&](const std::string& tmp) { writeMultiViewExr(tmp, left, right, meta); });
+        writeImageThroughTemporary(path, [&](const std::string& tmp) {
+            writeMultiViewExr(tmp, eyes[0], eyes[1], meta, eyeAovs[0], eyeAovs[1]);
+        });
         return;
     }
     for (int eye = 0; eye < 2; ++eye) {
         ImageMetadata eyeMeta = meta;
         eyeMeta.entries["caustica.eye"] = eye == 0 ? "left" : "right";
-        writeImageThroughTemporary(stereoEyePath(path, eye),
-                       [&](const std::string& tmp) { writeImage(tmp, eye == 0 ? left : right, eyeMeta); });
+        writeImageThroughTemporary(stereoEyePath(path, eye), [&](const std::string& tmp) {
+            if (eyeAovs[eye].empty())
+                writeImage(tmp, eyes[eye], eyeMeta);
+            else
+                writeExrLayers(tmp, eyes[eye], eyeAovs[eye], eyeMeta);
+        });
     }
 }
 

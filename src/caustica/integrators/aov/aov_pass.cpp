@@ -4,7 +4,6 @@
 
 #include "caustica/accel/device_scene.h"
 #include "caustica/integrators/megakernel_pass.h"
-#include "caustica/parallel/buffer.h"
 
 namespace caustica {
 
@@ -39,34 +38,22 @@ public:
     uint64_t render(uint64_t seed, uint64_t firstSampleIndex, AovSamplePass& pass) override {
         const size_t slots = pass.slots();
         if (slots == 0) return 0;
-        Vec2f* positions = pass.positions.data();
-        float* values = pass.values.data();
-        // The CPU's kernel writes the host pass; a GPU's writes device memory, copied after.
-        if constexpr (Exec::kind != DeviceKind::Cpu) {
-            if (positions_.size() != slots || values_.size() != pass.values.size()) {
-                positions_ = Buffer<Vec2f>(Exec::device(), slots);
-                values_ = Buffer<float>(Exec::device(), pass.values.size());
-            }
-            positions = positions_.data();
-            values = values_.data();
-        }
+        Vec2f* positions = nullptr;
+        float* values = nullptr;
+        target_.bind(pass, positions, values);
         scene_.visit(Exec{}, [&](const auto& intersector) {
             aov_detail::traceAovPass(Exec{}, scene_.view(), intersector, layout_, seed,
                                      firstSampleIndex, pass.width, pass.samplesPerPixel, slots,
                                      positions, values);
         });
-        if constexpr (Exec::kind != DeviceKind::Cpu) {
-            positions_.copyToHost(Span<Vec2f>(pass.positions.data(), slots));
-            values_.copyToHost(Span<float>(pass.values.data(), pass.values.size()));
-        }
+        target_.copyBack(pass);
         return slots;
     }
 
 private:
     DeviceScene scene_;
     AovLayout layout_;
-    Buffer<Vec2f> positions_;  // a GPU's
-    Buffer<float> values_;
+    AovPassTarget<Exec> target_;
 };
 
 template <>

@@ -1,14 +1,18 @@
 // `caustica render` under mpirun (built only with MPI and mpirun present): two ranks render the
 // single-process image byte for byte; a scene that one rank cannot read ends every rank with that
 // rank's message; Ctrl-C saves a checkpoint that resumes with as many ranks and is refused with
-// another count. Ranks are oversubscribed on CI's two cores, one thread each.
+// another count; sppm renders one process's image byte for byte too (integer photon sums), mlt
+// within the order of its splat sums. Ranks are oversubscribed on CI's two cores, one thread each.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <regex>
 #include <string>
+#include <vector>
 
 #include "e2e/cli_helpers.h"
 
@@ -36,7 +40,46 @@ size_t count(const std::string& text, const std::string& what) {
     return n;
 }
 
+/// The floats of a PFM file written by caustica ("PF\nW H\n-1\n", then little-endian floats).
+std::vector<float> pfmFloats(const std::string& bytes) {
+    size_t at = 0;
+    for (int lines = 0; lines < 3 && at < bytes.size(); ++at)
+        if (bytes[at] == '\n') ++lines;
+    std::vector<float> v((bytes.size() - at) / sizeof(float));
+    std::memcpy(v.data(), bytes.data() + at, v.size() * sizeof(float));
+    return v;
+}
+
 using MpiCli = CliFixture;
+
+TEST_F(MpiCli, TwoRanksRenderTheSppmImageOfOneProcessByteForByte) {
+    const std::string glass = std::string(CAUSTICA_SOURCE_DIR) + "/scenes/glass-caustic/scene.xml";
+    const std::string args = glass + kSmall + "--integrator sppm --sppm-photons 20000 --spp 3 -o ";
+    const CliResult alone = runCli("render " + args + path("alone.pfm"));
+    ASSERT_EQ(alone.exitCode, 0) << alone.output;
+    const CliResult two = runCliCommand(kMpirun + " -n 2 " + kRender + args + path("two.pfm") + " 2>&1");
+    ASSERT_EQ(two.exitCode, 0) << two.output;
+    const std::string image = readFile(path("two.pfm"));
+    EXPECT_FALSE(image.empty());
+    EXPECT_TRUE(image == readFile(path("alone.pfm")));
+}
+
+TEST_F(MpiCli, TwoRanksRenderTheMltImageOfOneProcessUpToTheOrderOfItsSums) {
+    const std::string args = kScene + kSmall + "--integrator mlt --mlt-chains 64 --spp 8 -o ";
+    const CliResult alone = runCli("render " + args + path("alone.pfm"));
+    ASSERT_EQ(alone.exitCode, 0) << alone.output;
+    const CliResult two = runCliCommand(kMpirun + " -n 2 " + kRender + args + path("two.pfm") + " 2>&1");
+    ASSERT_EQ(two.exitCode, 0) << two.output;
+    const std::vector<float> a = pfmFloats(readFile(path("alone.pfm"))), b = pfmFloats(readFile(path("two.pfm")));
+    ASSERT_EQ(a.size(), size_t(24 * 18 * 3));
+    ASSERT_EQ(b.size(), a.size());
+    double sum = 0;
+    for (size_t i = 0; i < a.size(); ++i) {
+        EXPECT_NEAR(b[i], a[i], 1e-4 * std::abs(a[i]) + 1e-6) << "value " << i;
+        sum += a[i];
+    }
+    EXPECT_GT(sum, 0);
+}
 
 TEST_F(MpiCli, TwoRanksRenderThePathImageOfOneProcessByteForByte) {
     // 13 spp in passes of 2: the budget ends inside a step, on rank 0.

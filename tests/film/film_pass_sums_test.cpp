@@ -7,22 +7,13 @@
 #include <random>
 
 #include "caustica/film/film.h"
+#include "film/random_pass.h"
 #include "caustica/util/error.h"
 
 namespace caustica {
 namespace {
 
-SamplePass randomPass(int w, int h, int k, uint32_t seed) {
-    SamplePass pass(w, h, k);
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> u(0.0f, 1.0f);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x)
-            for (int s = 0; s < k; ++s)
-                pass.at(x, y, s) = {Vec2f(x + u(rng) * 0.999f, y + u(rng) * 0.999f),
-                                    Spectrum(10 * u(rng), 10 * u(rng), 10 * u(rng))};
-    return pass;
-}
+using test::randomPass;
 
 TEST(FilmPassSums, AddingAPasssSumsLeavesTheBitsOfAddPass) {
     for (const Filter& filter : {Filter::box(), Filter::gaussian(), Filter::tent()}) {

@@ -9,23 +9,13 @@
 #include <sstream>
 
 #include "caustica/film/film.h"
+#include "film/random_pass.h"
 #include "caustica/util/error.h"
 
 namespace caustica {
 namespace {
 
-// K samples per pixel at random positions inside their pixels, radiance in [0, 10).
-SamplePass randomPass(int w, int h, int k, uint32_t seed) {
-    SamplePass pass(w, h, k);
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> u(0.0f, 1.0f);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x)
-            for (int s = 0; s < k; ++s)
-                pass.at(x, y, s) = {Vec2f(x + u(rng) * 0.999f, y + u(rng) * 0.999f),
-                                    Spectrum(10 * u(rng), 10 * u(rng), 10 * u(rng))};
-    return pass;
-}
+using test::randomPass;
 
 bool bitIdentical(const Image& a, const Image& b) {
     return a.sameSize(b) && std::memcmp(a.rgb.data(), b.rgb.data(), a.rgb.size() * 4) == 0;

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <functional>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -120,6 +121,9 @@ std::vector<LazyCase> makeCases() {
                      }});
     return cases;
 }
+
+/// gtest prints a case by its name (not as the bytes of its std::function).
+void PrintTo(const LazyCase& c, std::ostream* os) { *os << c.name; }
 
 class BsdfMoreChi2 : public ::testing::TestWithParam<LazyCase> {};
 

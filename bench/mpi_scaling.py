@@ -11,6 +11,13 @@ time of mpirun and all ranks (start, load and waiting included): on a machine sh
 work it shows whether the ranks split the work without adding any, where wall times cannot. Ranks beyond the cores are
 oversubscribed (--oversubscribe): such rows measure overhead, not scaling.
 
+--ceiling measures what the machine itself allows: for each rank count N that fits the cores, N
+copies of the 1-rank render (no MPI, the whole budget each, different seeds) run at once, and
+`machine_ceiling` = N x (best 1-rank run_seconds) / (the slowest copy's run_seconds). On a machine
+whose cores share execution units or caches (SMT siblings, a busy host) this is below N, and no
+split of the work over ranks can beat it; `of_ceiling` = speedup / machine_ceiling is then the
+share of the attainable speed-up that the ranks reach.
+
     bench/mpi_scaling.py scenes/cornell-box/scene.xml --res 128x96 --threads 1 --ranks 1,2,4 \\
         --case path:--spp=64 --case mlt:--spp=32 --case sppm:--spp=16 \\
         --csv bench/results/mpi-scaling-2026-11-26.csv
@@ -57,6 +64,26 @@ def render(mpirun, binary, scene, ranks, threads, res, args, work):
         return json.load(f), wall, cpu
 
 
+def concurrent_copies(binary, scene, copies, threads, res, args, work):
+    """run_seconds of `copies` single-process renders started together (seeds 1..copies)."""
+    procs, stats = [], []
+    for i in range(copies):
+        path = os.path.join(work, f'copy{i}.json')
+        cmd = [binary, 'render', scene, '--threads', str(threads), '-q', '--overwrite', '--seed', str(i + 1),
+               '-o', os.path.join(work, f'copy{i}.exr'), '--stats-json', path] + (['--res', res] if res else []) + args
+        procs.append((cmd, subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)))
+        stats.append(path)
+    for cmd, proc in procs:
+        out, _ = proc.communicate()
+        if proc.returncode != 0:
+            sys.exit('failed: ' + ' '.join(shlex.quote(c) for c in cmd) + '\n' + out)
+    seconds = []
+    for path in stats:
+        with open(path) as f:
+            seconds.append(json.load(f)['run_seconds'])
+    return seconds
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument('scene')
@@ -67,6 +94,8 @@ def main():
     p.add_argument('--repeat', type=int, default=1)
     p.add_argument('--binary', default=os.path.join(ROOT, 'build-cpu', 'caustica'))
     p.add_argument('--mpirun', default=shutil.which('mpirun') or 'mpirun')
+    p.add_argument('--ceiling', action='store_true',
+                   help='also run N single-process copies at once: the speed-up the machine allows')
     p.add_argument('--csv', required=True)
     a = p.parse_args()
     ranks = [int(n) for n in a.ranks.split(',')]
@@ -89,6 +118,14 @@ def main():
                        'samples': stats['samples'],
                        'bytes_sent_per_iteration': stats.get('bytes_sent_per_iteration', 0),
                        'bytes_sent': stats.get('bytes_sent', 0)}
+                if a.ceiling:
+                    ceiling = ''
+                    if 1 < n and n * a.threads <= cores:
+                        slowest = [max(concurrent_copies(a.binary, a.scene, n, a.threads, a.res, args, work))
+                                   for _ in range(a.repeat)]
+                        ceiling = round(n * baseline / min(slowest), 3)
+                    row['machine_ceiling'] = ceiling
+                    row['of_ceiling'] = round(row['speedup'] / ceiling, 3) if ceiling else ''
                 rows.append(row)
                 print(', '.join(f'{k} {v}' for k, v in row.items()), flush=True)
     write_csv(a.csv, rows)

@@ -9,9 +9,16 @@ its per-pixel variance of the mean. Then:
   nlm-novar the same without --variance (the filter estimates the variance)
   oidn      caustica denoise --method oidn with albedo and normal (when OIDN is found)
 relMSE comes from `caustica compare --json`; `seconds` is the batch renders' wall time for the
-noisy row ('' when --reuse found them) and the `caustica denoise` process's for the others. The guides (albedo, sh_normal, depth) are rendered
-by Mitsuba 3's `aov` integrator (scalar_rgb, same scene file, resolution and camera, 64 spp)
-until caustica's renderer writes its own AOVs.
+noisy row ('' when --reuse found them) and the `caustica denoise` process's for the others. The guides
+(albedo, sh_normal, depth) of these rows are rendered by Mitsuba 3's `aov` integrator (scalar_rgb,
+same scene file, resolution and camera, 64 spp): guides cleaner than the render's.
+
+With --own-aovs (the default; --no-own-aovs leaves them out) the path a user takes, at the same N spp:
+  own-noisy  `caustica render --spp N --seed 1 --aov alb:albedo,nn:sh_normal,dd:depth,var:variance
+             --denoise nlm -o own-N.exr`: the render's own image, its AOVs as noisy as it (layers of
+             the EXR; variance of its pixel samples); `seconds` the render's wall time (filter included)
+  own-nlm    the render's own own-N.denoised.exr (`render --denoise nlm`)
+  own-oidn   `caustica denoise own-N.exr --method oidn` (albedo and normal from the file's layers)
 
 Run with a python that has mitsuba and numpy (the scene files' references were made with 3.9.1):
   /work/venv/bin/python bench/denoise_bench.py --caustica build-cpu/caustica --threads 2
@@ -71,6 +78,29 @@ def relmse(caustica, image, reference):
     return json.loads(run([caustica, 'compare', '--json', image, reference]))['relmse']
 
 
+def own_aov_rows(args, scene, res, spp, work, ref, env, base):
+    """own-noisy, own-nlm, own-oidn: one render with caustica's own AOVs and --denoise nlm."""
+    base = dict(base, spp=spp, batches=1)
+    noisy = os.path.join(work, f'own-{spp}.exr')
+    t0 = time.time()
+    run([args.caustica, 'render', os.path.join(ROOT, 'scenes', scene, 'scene.xml'), '-o', noisy, '--spp', str(spp),
+         '--seed', '1', '--res', f'{res}x{res}', '--threads', str(args.threads), '-q',
+         '--aov', 'alb:albedo,nn:sh_normal,dd:depth,var:variance', '--denoise', 'nlm'])
+    rows = [dict(base, method='own-noisy', relmse=relmse(args.caustica, noisy, ref), seconds=round(time.time() - t0, 2)),
+            dict(base, method='own-nlm', relmse=relmse(args.caustica, os.path.join(work, f'own-{spp}.denoised.exr'), ref),
+                 seconds='')]
+    out = os.path.join(work, f'own-oidn-{spp}.exr')
+    t0 = time.time()
+    r = subprocess.run([args.caustica, 'denoise', noisy, '-o', out, '--method', 'oidn', '--threads', str(args.threads),
+                        '-q'] + (['--oidn-library', args.oidn_library] if args.oidn_library else []),
+                       capture_output=True, text=True, env=env)
+    if r.returncode != 0:
+        print(f'{scene} {spp} spp own-oidn: skipped: {(r.stdout + r.stderr).strip()}')
+    else:
+        rows.append(dict(base, method='own-oidn', relmse=relmse(args.caustica, out, ref), seconds=round(time.time() - t0, 2)))
+    return rows
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument('--caustica', default=os.path.join(ROOT, 'build-cpu', 'caustica'))
@@ -81,6 +111,8 @@ def main():
     ap.add_argument('--oidn-library', default='')
     ap.add_argument('--work', default='/tmp/caustica-denoise-bench')
     ap.add_argument('--reuse', action='store_true', help='keep batch renders already in --work')
+    ap.add_argument('--own-aovs', action=argparse.BooleanOptionalAction, default=True,
+                    help="also render with caustica's own AOVs and render --denoise (own-* rows)")
     ap.add_argument('--csv', default=os.path.join(ROOT, 'bench', 'results',
                                                   'denoise-' + datetime.date.today().isoformat() + '.csv'))
     args = ap.parse_args()
@@ -131,6 +163,8 @@ def main():
                     print(f'{scene} {spp} spp {method}: skipped: {(r.stdout + r.stderr).strip()}')
                     continue
                 rows.append(dict(base, method=method, relmse=relmse(args.caustica, out, ref), seconds=round(seconds, 2)))
+            if args.own_aovs:
+                rows += own_aov_rows(args, scene, res, spp, work, ref, env, base)
             for row in rows[first:]:
                 print(f"{row['scene']:14s} {row['spp']:4d} spp {row['method']:10s} relMSE {row['relmse']:.5f}"
                       f"  {row['seconds']} s")

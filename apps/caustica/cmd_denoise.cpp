@@ -1,40 +1,14 @@
 // caustica denoise IN -o OUT — denoise a rendered image into a new file (the input is kept).
 #include <tbb/global_control.h>
 
-#include <cctype>
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 #include <string>
 
 #include "commands.h"
-#include "caustica/io/exr_feature_layers.h"
-#include "caustica/io/exr_layers.h"
-#include "caustica/io/image_io.h"
-#include "caustica/render/denoise.h"
-#include "caustica/render/render_outputs.h"
-#include "caustica/util/error.h"
+#include "caustica/render/denoise_file.h"
 
 namespace caustica::cli {
-
-namespace {
-
-bool isExr(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return ext == ".exr";
-}
-
-/// Refuses an output that is the input itself (the noisy image is always kept).
-void checkNotInput(const std::string& input, const std::string& output) {
-    namespace fs = std::filesystem;
-    std::error_code ec;
-    const bool same = fs::exists(output, ec) ? fs::equivalent(input, output, ec)
-                                             : fs::weakly_canonical(input, ec) == fs::weakly_canonical(output, ec);
-    if (same) throw Error(output, 0, "the output would overwrite the noisy input: give another -o path");
-}
-
-}  // namespace
 
 std::function<int()> addDenoiseCommand(CLI::App& app) {
     struct Options {
@@ -45,7 +19,9 @@ std::function<int()> addDenoiseCommand(CLI::App& app) {
     };
     auto opt = std::make_shared<Options>();
     CLI::App* cmd = app.add_subcommand("denoise", "Denoise a rendered image into a new file (the input is kept)");
-    cmd->add_option("image", opt->input, "Noisy image (.exr, .pfm); an EXR's AOV layers are used as guides")
+    cmd->add_option("image", opt->input,
+                    "Noisy image (.exr, .pfm); an EXR's AOV layers are used as guides; a multi-view (stereo) "
+                    "EXR is denoised view by view into a multi-view EXR")
         ->required()
         ->check(CLI::ExistingFile);
     cmd->add_option("-o,--output", opt->output, "Denoised image (.exr, .pfm, .png); never the input")->required();
@@ -71,33 +47,19 @@ std::function<int()> addDenoiseCommand(CLI::App& app) {
         settings.nlm = opt->nlm;
         settings.oidn.library = opt->oidnLibrary;
         settings.oidn.threads = opt->threads;
-        checkNotInput(opt->input, opt->output);
-        checkImageOutputPath(opt->output);
-
         std::unique_ptr<tbb::global_control> threads;
         if (opt->threads > 0)
             threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
                                                             size_t(opt->threads));
-        const Image color = readImage(opt->input);
-        DenoiseFeatures features;
-        if (!opt->ignoreLayers && isExr(opt->input)) features = readFeatureLayers(opt->input);
-        if (!opt->albedo.empty()) features.albedo = readImage(opt->albedo);
-        if (!opt->normal.empty()) features.normal = readImage(opt->normal, ImageReadOptions{.raw = true});
-        if (!opt->depth.empty()) features.depth = readImage(opt->depth);
-        if (!opt->variance.empty()) features.variance = readImage(opt->variance);
-
-        const Image result = denoise(color, features, settings);
-        ImageMetadata metadata = readImageMetadata(opt->input);
-        metadata.entries.erase(kAovsAttribute);  // the output holds the colour only
-        metadata.entries["caustica.denoiser"] = denoiseMethodName(settings.method);
-        metadata.entries["caustica.denoised_from"] = opt->input;
-        writeImage(opt->output, result, metadata);
+        const DenoiseFileResult r = denoiseFile(
+            DenoiseFileRequest{opt->input, opt->output, opt->albedo, opt->normal, opt->depth, opt->variance,
+                               opt->ignoreLayers},
+            settings);
         if (!opt->quiet)
-            std::printf("denoised %s (%d x %d, %s; guides:%s%s%s%s%s) -> %s\n", opt->input.c_str(), color.width,
-                        color.height, denoiseMethodName(settings.method), features.albedo ? " albedo" : "",
-                        features.normal ? " normal" : "", features.depth ? " depth" : "",
-                        features.variance ? " variance" : "",
-                        features.albedo || features.normal || features.depth || features.variance ? "" : " none",
+            std::printf("denoised %s (%d x %d%s, %s; guides:%s%s%s%s%s) -> %s\n", opt->input.c_str(), r.width,
+                        r.height, r.views == 2 ? ", views left and right" : "", denoiseMethodName(settings.method),
+                        r.albedo ? " albedo" : "", r.normal ? " normal" : "", r.depth ? " depth" : "",
+                        r.variance ? " variance" : "", r.albedo || r.normal || r.depth || r.variance ? "" : " none",
                         opt->output.c_str());
         return 0;
     };

@@ -4,8 +4,10 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "cli_helpers.h"
+#include "caustica/io/exr_multiview.h"
 #include "caustica/io/image_io.h"
 #include "common/layered_exr.h"
 
@@ -58,6 +60,17 @@ TEST_F(DenoiseCli, UsesTheInputsAovLayers) {
     r = runCli("denoise " + path("layered.exr") + " -o " + path("out2.exr") + " --ignore-layers");
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("guides: none)"), std::string::npos) << r.output;
+}
+
+TEST_F(DenoiseCli, DenoisesAStereoPairViewByViewIntoAMultiViewExr) {
+    writeMultiViewExr(path("pair.exr"), readImage(path("in.exr")), readImage(path("albedo.exr")));
+    CliResult r = runCli("denoise " + path("pair.exr") + " -o " + path("pair.denoised.exr"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("views left and right"), std::string::npos) << r.output;
+    EXPECT_EQ(exrViews(path("pair.denoised.exr")), (std::vector<std::string>{"left", "right"}));
+    r = runCli("denoise " + path("pair.exr") + " -o " + path("pair.png"));
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.output.find("multi-view EXR"), std::string::npos) << r.output;
 }
 
 TEST_F(DenoiseCli, RefusesToOverwriteTheInput) {

@@ -2,6 +2,7 @@
 #include "caustica/film/pixel_variance.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <istream>
 #include <ostream>
@@ -49,13 +50,33 @@ void PixelVariance::addPass(const SamplePass& pass) {
     });
 }
 
-std::vector<float> PixelVariance::develop() const {
+void PixelVariance::addEstimate(const Image& estimate) {
+    if (estimate.width != width_ || estimate.height != height_)
+        throw Error("batch estimate does not match the variance film");
+    const float* rgb = estimate.rgb.data();
+    double* moments = moments_.data();
+    parallelFor(device_, "pixel_variance_batch", size_t(width_) * size_t(height_), [=](size_t pixel) {
+        const float* v = rgb + 3 * pixel;
+        if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2])) return;
+        double* m = moments + pixel * kMoments;
+        m[0] += 1;
+        for (int c = 0; c < 3; ++c) {
+            m[1 + c] += double(v[c]);
+            m[4 + c] += double(v[c]) * double(v[c]);
+        }
+    });
+}
+
+std::vector<float> PixelVariance::develop(float undefined) const {
     const size_t pixels = size_t(width_) * size_t(height_);
     std::vector<float> out(pixels * 3, 0.0f);
     for (size_t i = 0; i < pixels; ++i) {
         const double* m = &moments_[i * kMoments];
         const double n = m[0];
-        if (n < 2) continue;
+        if (n < 2) {
+            for (int c = 0; c < 3; ++c) out[i * 3 + size_t(c)] = undefined;
+            continue;
+        }
         for (int c = 0; c < 3; ++c) {
             const double s2 = std::max(0.0, (m[4 + c] - m[1 + c] * m[1 + c] / n) / (n - 1));
             out[i * 3 + size_t(c)] = float(s2 / n);

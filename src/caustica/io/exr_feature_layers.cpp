@@ -1,6 +1,8 @@
 // exr_feature_layers.cpp — denoiser guides from AOV layers, by type.
 #include "caustica/io/exr_feature_layers.h"
 
+#include <cmath>
+
 #include "caustica/io/exr_layers.h"
 
 namespace caustica {
@@ -30,6 +32,14 @@ DenoiseFeatures featuresFromAovs(const AovImage& aovs) {
     if (!features.normal) features.normal = layerImage(aovs, AovType::GeoNormal);
     features.depth = layerImage(aovs, AovType::Depth);
     features.variance = layerImage(aovs, AovType::Variance);
+    // An undefined variance (NaN: batch means of fewer than 2 steps, docs/AOV.md) is no guide:
+    // the NL-means filter then estimates its own.
+    if (features.variance)
+        for (float v : features.variance->rgb)
+            if (!std::isfinite(v)) {
+                features.variance.reset();
+                break;
+            }
     return features;
 }
 

@@ -12,7 +12,8 @@
 
 namespace caustica {
 
-/// The guides held in `aovs` (none of a type the list lacks).
+/// The guides held in `aovs` (none of a type the list lacks; no variance where it is not finite
+/// everywhere).
 DenoiseFeatures featuresFromAovs(const AovImage& aovs);
 
 /// The guides held in `path`'s AOV layers (none when the file has no `caustica.aovs`

@@ -95,6 +95,18 @@ void writeMultiViewExr(const std::string& path, const Image& left, const Image& 
     }
 }
 
+std::vector<std::string> exrViews(const std::string& path) {
+    checkExrFile(path);
+    try {
+        Imf::InputFile file(path.c_str());
+        if (!Imf::hasMultiView(file.header())) return {};
+        const Imf::StringVector views = Imf::multiView(file.header());
+        return std::vector<std::string>(views.begin(), views.end());
+    } catch (const std::exception& e) {
+        throw Error(path + ": cannot read the EXR header (" + e.what() + ")");
+    }
+}
+
 StereoImagePair readMultiViewExr(const std::string& path) {
     checkExrFile(path);  // header, window and chunks sane before OpenEXR allocates
     try {

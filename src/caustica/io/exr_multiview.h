@@ -12,6 +12,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "caustica/film/aov_layers.h"
 #include "caustica/film/image.h"
@@ -36,6 +37,10 @@ void writeMultiViewExr(const std::string& path, const Image& left, const Image& 
 /// file has a caustica.aovs attribute (empty otherwise). Throws caustica::Error naming the file
 /// when it is not a two-view EXR with both views' R, G, B (and every listed AOV channel), or is
 /// damaged (image_io's checks before any pixel is read).
+/// The view names of `path`'s multiView attribute, in order; empty for a single-view file (no
+/// attribute). Throws caustica::Error naming the file when it is not a readable EXR.
+std::vector<std::string> exrViews(const std::string& path);
+
 struct StereoImagePair {
     Image left, right;
     AovImage leftAovs, rightAovs;

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <istream>
+#include <limits>
 #include <ostream>
 
 #include "caustica/util/error.h"
@@ -19,10 +20,13 @@ AovSession::AovSession(const Scene& scene, const Accel& accel, Device device, ui
       layout_(aovLayout(spec_)) {
     const int w = scene.film.width, h = scene.film.height;
     if (spec_.has(AovType::Variance)) {
-        if (!pixelPasses_)
-            throw Error(
-                "the variance AOV needs independent pixel samples (path, direct); integrator '" +
-                integrator + "' renders none, and caustica makes up no estimate for it");
+        batchMeans_ = !pixelPasses_;
+        if (batchMeans_) {
+            if (!session.hasStepEstimates())
+                throw Error("the variance AOV needs independent pixel samples or per-step estimates; integrator '" +
+                            integrator + "' makes neither, and caustica makes up no estimate for it");
+            session.recordStepEstimates();
+        }
         variance_.emplace(w, h);
     }
     if (layout_.channels > 0) {
@@ -50,6 +54,8 @@ void AovSession::afterStep(const IntegratorSession& session, double samplesBefor
     if (pixelPasses_ && !pass)
         throw Error("internal: an integrator session that renders passes showed none");
     if (variance_ && pass) variance_->addPass(*pass);
+    if (variance_ && batchMeans_)
+        if (const Image* estimate = session.lastStepEstimate()) variance_->addEstimate(*estimate);
     if (!film_) return;
     int k = 1;
     uint64_t first = film_->samplesPerPixel();
@@ -82,7 +88,10 @@ AovImage AovSession::develop() const {
     const size_t pixels = size_t(image.width) * size_t(image.height), C = image.channels.size();
     image.values.assign(pixels * C, 0.0f);
     const std::vector<float> geometric = film_ ? film_->develop() : std::vector<float>();
-    const std::vector<float> variance = variance_ ? variance_->develop() : std::vector<float>();
+    // Batch means of fewer than 2 batches: NaN, no number (the denoiser then estimates its own).
+    const std::vector<float> variance =
+        variance_ ? variance_->develop(batchMeans_ ? std::numeric_limits<float>::quiet_NaN() : 0.0f)
+                  : std::vector<float>();
     // Interleave the geometric film's channels and the variance's in the spec's order.
     size_t out = 0, in = 0;
     for (const AovLayer& layer : spec_.layers) {

@@ -8,7 +8,9 @@
 //   (same seed, sample indices, film positions and rays); the variance AOV takes the pass's
 //   radiance samples (pixel_variance.h).
 // - mlt, sppm, ppm: one AOV sample per pixel per step (sample indices 0, 1, ...), up to
-//   kAovSamplesPerPixelCap; the variance AOV is refused (no independent pixel samples).
+//   kAovSamplesPerPixelCap; the variance AOV by batch means: each step's own estimate of the
+//   image (IntegratorSession::lastStepEstimate) is one batch, the layer s² / n of the batches
+//   (NaN with fewer than 2 batches; docs/AOV.md).
 // Checkpoints carry the AOV state after the integrator's (Renderer::save/load).
 #pragma once
 
@@ -33,7 +35,8 @@ inline constexpr uint64_t kAovSamplesPerPixelCap = 64;
 
 class AovSession {
 public:
-    /// Throws caustica::Error when `spec` asks for variance and `session` renders no pixel passes.
+    /// Throws caustica::Error when `spec` asks for variance and `session` renders neither pixel
+    /// passes nor step estimates (whose recording it turns on).
     /// Asks `session` to share its camera rays' first hits (IntegratorSession::shareFirstHits);
     /// where it cannot, the AOV pass traces the camera rays again.
     AovSession(const Scene& scene, const Accel& accel, Device device, uint64_t seed, AovSpec spec,
@@ -60,6 +63,7 @@ private:
     AovSpec spec_;
     uint64_t seed_ = 0;
     bool pixelPasses_ = false;
+    bool batchMeans_ = false;  // the variance of step estimates (no pixel passes)
     AovLayout layout_;
     bool sharedFirstHits_ = false;           // the session writes the AOVs of its own camera rays
     std::unique_ptr<AovPassDriver> driver_;  // null when only variance is asked for, or shared

@@ -63,6 +63,14 @@ public:
     /// where it cannot (the wavefront path tracer): the AOV session traces them itself.
     virtual bool shareFirstHits(const AovLayout& layout) { (void)layout; return false; }
     virtual const AovSamplePass* lastAovPass() const { return nullptr; }
+    /// Sessions without pixel passes (mlt, sppm, ppm) that can make a batch estimate per step:
+    /// an image of that step's contribution alone, whose spread over the steps gives the variance
+    /// AOV by batch means (aov_session.h, docs/AOV.md). recordStepEstimates() turns them on (they
+    /// cost a develop per step); after each later step lastStepEstimate() shows the step's, or
+    /// null for a step that made none (mlt's bootstrap).
+    virtual bool hasStepEstimates() const { return false; }
+    virtual void recordStepEstimates() {}
+    virtual const Image* lastStepEstimate() const { return nullptr; }
 };
 
 }  // namespace caustica

@@ -69,7 +69,9 @@ public:
             bootstrapBytes_ = comm_.bytesSent() - before;
             return;
         }
+        if (recordEstimates_ && since_.sums.empty()) mlt_->developSince(since_);  // the sums before
         mlt_->iterate();
+        if (recordEstimates_) estimate_ = mlt_->developSince(since_);
         iterated_ = true;
         ++iterationsThisRun_;
         iterationBytes_ += comm_.bytesSent() - before;
@@ -92,9 +94,14 @@ public:
     void save(std::ostream& out) const override { mlt_->save(out); }
     void load(std::istream& in) override {
         mlt_->load(in);
+        since_ = {};  // the loaded sums are taken before the next iteration
         iterationsThisRun_ = 0;
         raysAtLoad_ = mlt_->stats().rays;
     }
+    bool hasStepEstimates() const override { return true; }
+    void recordStepEstimates() override { recordEstimates_ = true; }
+    /// The last iteration's splats alone, developed with the render's b (none for the bootstrap).
+    const Image* lastStepEstimate() const override { return estimate_.empty() ? nullptr : &estimate_; }
     std::string description() const override {
         const MltSettings& s = mlt_->settings();
         char line[256];
@@ -147,6 +154,9 @@ private:
     Communicator& comm_;
     std::unique_ptr<MltRenderer> mlt_;
     bool iterated_ = false;
+    bool recordEstimates_ = false;
+    MltRenderer::SplatState since_;  // the splat sums after the last iteration (empty: not taken yet)
+    Image estimate_;                 // the last step's batch estimate (empty after the bootstrap)
     uint64_t iterationsThisRun_ = 0, raysAtLoad_ = 0;
     // Bytes this rank sent: the bootstrap's gather, the iterations' counter sums this run, the
     // last develop's film sum.

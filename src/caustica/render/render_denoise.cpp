@@ -12,14 +12,14 @@
 
 namespace caustica {
 
-AovSpec withDenoiseGuides(AovSpec spec, bool pixelPasses) {
+AovSpec withDenoiseGuides(AovSpec spec, bool withVariance) {
     const auto add = [&](AovType type, const char* name) {
         if (!spec.has(type)) spec.layers.push_back(AovLayer{name, type});
     };
     add(AovType::Albedo, "denoise.albedo");
     if (!spec.has(AovType::GeoNormal)) add(AovType::ShNormal, "denoise.normal");
     add(AovType::Depth, "denoise.depth");
-    if (pixelPasses) add(AovType::Variance, "denoise.variance");
+    if (withVariance) add(AovType::Variance, "denoise.variance");
     if (int(spec.layers.size()) > kMaxAovLayers)
         throw Error("--denoise: the AOV list and the denoiser's guides make more than " +
                     std::to_string(kMaxAovLayers) + " layers");

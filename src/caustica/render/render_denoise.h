@@ -15,9 +15,9 @@ namespace caustica {
 class Renderer;
 
 /// `spec` with the guides the denoisers read added where it has none of their type: albedo,
-/// sh_normal, depth, and (when the integrator renders independent pixel samples) variance, named
-/// "denoise.albedo", ... .
-AovSpec withDenoiseGuides(AovSpec spec, bool pixelPasses);
+/// sh_normal, depth, and (when the integrator can make the variance AOV: pixel samples or step
+/// estimates) variance, named "denoise.albedo", ... .
+AovSpec withDenoiseGuides(AovSpec spec, bool withVariance);
 
 /// Where the denoised copy of output `path` goes: "out/a.exr" -> "out/a.denoised.exr".
 std::string denoisedOutputPath(const std::string& path);

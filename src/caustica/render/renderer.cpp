@@ -138,7 +138,7 @@ Renderer::Renderer(Scene scene, const RenderRequest& request, const CheckpointHe
         AovSpec spec = aovsFromRequest ? parseAovSpec(request.aovs, "--aov")
                        : !s.integrator.aovs.empty() ? parseAovSpec(s.integrator.aovs, s.integrator.aovsWhere)
                                                     : AovSpec{};
-        if (request.denoiseGuides) spec = withDenoiseGuides(std::move(spec), session_->rendersPixelPasses());
+        if (request.denoiseGuides) spec = withDenoiseGuides(std::move(spec), session_->rendersPixelPasses() || session_->hasStepEstimates());
         aov_ = std::make_unique<AovSession>(s, *accel_, device_, seed_, spec, *session_, integrator_);
         identity_.push_back(identityEntry("aovs", spec.text()));
     }

@@ -69,6 +69,7 @@ public:
         }
         driver_->update();
         ++iterationsThisRun_;
+        if (recordEstimates_) makeStepEstimate();
     }
     double samplesPerPixel() const override { return double(driver_->stats().iterations); }
     uint64_t passLimit() const override { return driver_->settings().maxPasses; }
@@ -89,7 +90,14 @@ public:
     void load(std::istream& in) override {
         SppmCheckpoint c = readSppmCheckpoint(in, checkpoint(false));
         driver_->restore(c.pixels, c.iterations);
+        if (recordEstimates_) cumulative_ = cumulativeEstimate();
     }
+    bool hasStepEstimates() const override { return true; }
+    void recordStepEstimates() override {
+        recordEstimates_ = true;
+        cumulative_ = cumulativeEstimate();
+    }
+    const Image* lastStepEstimate() const override { return estimate_.empty() ? nullptr : &estimate_; }
     std::string description() const override {
         const SppmSettings& s = driver_->settings();
         char line[256];
@@ -144,6 +152,36 @@ public:
     }
 
 private:
+    /// Per pixel and RGB channel, `iterations` times the developed image (sppmPixelRadiance): sppm
+    /// Σ_i Ld_i + τ / (photon_count · π R²), ppm iterations · Ld + τ / (photon_count · π R²). As
+    /// τ / (π R²) is the sum over iterations of Phi_i / (π R_i²) (sppm_kernel.h, both radius
+    /// schedules), its growth over one iteration is that iteration's own estimate,
+    /// Ld_i + Phi_i / (photon_count · π R_i²): the batch of the variance AOV (docs/AOV.md).
+    std::vector<double> cumulativeEstimate() const {
+        const std::vector<SppmPixel> entries = driver_->pixels();
+        const uint32_t perPixel = driver_->entriesPerPixel();
+        const double photons = double(driver_->settings().photonCount);
+        const double ldTimes =
+            driver_->settings().mapper == PhotonMapper::Ppm ? double(driver_->stats().iterations) : 1.0;
+        const size_t pixels = entries.size() / perPixel;
+        std::vector<double> sum(3 * pixels, 0.0);
+        for (size_t p = 0; p < pixels; ++p)
+            for (uint32_t j = 0; j < perPixel; ++j) {
+                const SppmPixel& e = entries[p * perPixel + j];
+                const double area = 3.14159265358979323846 * e.radius * e.radius;
+                for (int c = 0; c < 3; ++c)
+                    sum[3 * p + size_t(c)] += (e.ld[c] * ldTimes + (area > 0 ? e.tau[c] / (photons * area) : 0.0)) /
+                                              double(perPixel);
+            }
+        return sum;
+    }
+    void makeStepEstimate() {
+        std::vector<double> now = cumulativeEstimate();
+        if (estimate_.empty()) estimate_ = Image(driver_->width(), driver_->height());
+        for (size_t i = 0; i < now.size(); ++i) estimate_.rgb[i] = float(now[i] - cumulative_[i]);
+        cumulative_ = std::move(now);
+    }
+
     SppmCheckpoint checkpoint(bool withState) const {
         SppmCheckpoint c;
         const SppmSettings& s = driver_->settings();
@@ -166,6 +204,9 @@ private:
     uint64_t seed_ = 0;
     std::unique_ptr<SppmDriverBase> driver_;
     uint64_t iterationsThisRun_ = 0;
+    bool recordEstimates_ = false;
+    std::vector<double> cumulative_;  // cumulativeEstimate() after the last step (or load)
+    Image estimate_;                  // the last step's batch estimate
 };
 
 }  // namespace

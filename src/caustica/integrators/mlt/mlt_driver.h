@@ -265,8 +265,11 @@ public:
     }
 
     /// Collective over the ranks: their splat sums are summed (in rank order) into the image.
-    Image develop() override {
-        const double total = double(settings.chains) * settings.proposals * double(stats.iterations);
+    Image develop() override { return film_.develop(splatSums().data(), b_, splatWeight()); }
+    Image developSums(const std::vector<double>& sums, double weight) const override {
+        return film_.develop(sums.data(), b_, weight);
+    }
+    std::vector<double> splatSums() override {
         const uint64_t pending = buf_.pendingIterations(stats.iterations);
         std::vector<double> sums = buf_.image.toHost();
         if (pending > 0) {
@@ -276,7 +279,7 @@ public:
             sums = copy.toHost();
         }
         if (comm_.size() > 1) comm_.sum(std::span<double>(sums));
-        return film_.develop(sums.data(), b_, total);
+        return sums;
     }
 
     // Checkpoints hold the chain-major store: a dimension-major one is transposed on the host

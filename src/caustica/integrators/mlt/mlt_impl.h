@@ -40,6 +40,15 @@ struct MltRenderer::Impl {
     /// Not const: the splats of an unfinished batch go through the splat scratch buffers into a
     /// copy of the splat sums; the render's state is left as it was.
     virtual Image develop() = 0;
+    /// The splat sums of the iterations so far (kMltValuesPerPixel doubles per pixel; an
+    /// unfinished batch's splats included, as develop() takes them). Collective over the ranks
+    /// (summed in rank order).
+    virtual std::vector<double> splatSums() = 0;
+    /// develop() of given splat sums of total chain splat weight `weight`, with the current b:
+    /// the image of some iterations' splats alone (the variance AOV's batches, docs/AOV.md).
+    virtual Image developSums(const std::vector<double>& sums, double weight) const = 0;
+    /// Total chain splat weight of the iterations so far (develop()'s normaliser).
+    double splatWeight() const { return double(settings.chains) * settings.proposals * double(stats.iterations); }
     /// Resumable checkpoints (mlt_checkpoint.h): the whole state, written and restored.
     virtual void save(std::ostream& out) const = 0;
     virtual void load(std::istream& in) = 0;

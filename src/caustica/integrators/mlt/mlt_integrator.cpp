@@ -191,6 +191,15 @@ MltRenderer::~MltRenderer() = default;
 void MltRenderer::bootstrap() { impl_->bootstrap(); }
 uint64_t MltRenderer::iterate() { return impl_->iterate(); }
 Image MltRenderer::develop() const { return impl_->develop(); }
+Image MltRenderer::developSince(SplatState& since) const {
+    SplatState now{impl_->splatSums(), impl_->splatWeight()};
+    if (since.sums.size() != now.sums.size()) since = SplatState{std::vector<double>(now.sums.size(), 0.0), 0.0};
+    std::vector<double> delta(now.sums.size());
+    for (size_t i = 0; i < delta.size(); ++i) delta[i] = now.sums[i] - since.sums[i];
+    const double weight = now.weight - since.weight;
+    since = std::move(now);
+    return impl_->developSums(delta, weight);
+}
 const MltStats& MltRenderer::stats() const { return impl_->stats; }
 const MltSettings& MltRenderer::settings() const { return impl_->settings; }
 bool MltRenderer::started() const { return impl_->started; }

@@ -12,6 +12,7 @@
 #include <iosfwd>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "caustica/accel/accel.h"
 #include "caustica/film/image.h"
@@ -108,6 +109,15 @@ public:
     /// filter's integral (and its coverage at the image border). Over ranks it is collective:
     /// every rank's splat sums are summed, and every rank gets the image.
     Image develop() const;
+    /// The image of the iterations since develop's state `since` alone (their splats, scaled by
+    /// their own splat weight, with the current b), and `since` moved to now: the batch estimate
+    /// of the variance AOV (render/aov_session.h). An empty `since` starts it (a black image).
+    /// Collective over ranks, as develop().
+    struct SplatState {
+        std::vector<double> sums;
+        double weight = 0;
+    };
+    Image developSince(SplatState& since) const;
     /// True once bootstrap() ran or a checkpoint was loaded.
     bool started() const;
     /// Resumable checkpoints: save() writes the whole state (chains, splat sums, b, counters);

@@ -140,10 +140,11 @@ template <>
 struct WavefrontSchedule<CpuExec> {  // a CPU: one small chunk per thread, stages as serial loops
     using StageExec = SerialExec;
     static size_t slots() { return cpuThreadCount(); }
-    /// About 300 bytes per path (state, sampler, hit, shadow ray, queues): 2048 paths keep a
-    /// chunk within a core's L2 cache (measured in docs/PERFORMANCE.md).
+    /// About 300 bytes per path (state, sampler, hit, shadow ray, queues): 1024 paths take a
+    /// third of a core's L2 cache (1 MiB here), leaving the rest to the scene; 1024 beat 2048 and
+    /// 4096 on cornell-water (docs/PERFORMANCE.md, 2026-11-26).
     static size_t chunk(size_t maxPathsInFlight) {
-        return std::min<size_t>(2048, std::max<size_t>(1, maxPathsInFlight / slots()));
+        return std::min<size_t>(1024, std::max<size_t>(1, maxPathsInFlight / slots()));
     }
     static constexpr size_t prefetch = 8;
 };

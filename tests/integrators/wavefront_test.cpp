@@ -135,6 +135,17 @@ TEST(Wavefront, ChunkingAndThreadCountDoNotChangeTheSamples) {
     EXPECT_TRUE(sameBits(whole, render(scene, accel, settings, true, kWavefrontMaxPaths, 2)));
 }
 
+TEST(Wavefront, ManyChunksOnTwoThreadsEqualTheMegakernel) {
+    // More samples than one CPU chunk holds: chunks traced by both threads at once.
+    const Scene scene = makeTestScene(48);
+    const Accel accel(scene, AccelKind::Embree);
+    const PathSettings settings;
+    PassResult mega = render(scene, accel, settings, false, kWavefrontMaxPaths, 2);
+    PassResult wave = render(scene, accel, settings, true, kWavefrontMaxPaths, 2);
+    EXPECT_TRUE(sameBits(mega, wave));
+    EXPECT_EQ(mega.rays, wave.rays);
+}
+
 TEST(Wavefront, ReportsItsMemoryPerPath) {
     EXPECT_GE(wavefrontBytesPerPath(), sizeof(PathState) + sizeof(ShadowRay));
     EXPECT_LE(wavefrontBytesPerPath(), 256u);

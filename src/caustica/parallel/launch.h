@@ -15,8 +15,12 @@
 // functions or public member functions, never inside a generic lambda or a private member.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <utility>
+
+#include <tbb/global_control.h>
+#include <tbb/task_arena.h>
 
 #include "caustica/parallel/device.h"
 #include "caustica/util/error.h"
@@ -30,6 +34,14 @@ namespace caustica {
 
 /// Kernels on CPU threads (TBB).
 struct CpuExec {
+    static constexpr DeviceKind kind = DeviceKind::Cpu;
+    static Device device() { return Device::cpu(); }
+};
+
+/// Kernels run one after another in the calling CPU thread: for a driver that already spreads
+/// independent work over the CPU's threads one level up (the wavefront path tracer traces one
+/// chunk of paths per thread this way, each chunk's stages as serial loops).
+struct SerialExec {
     static constexpr DeviceKind kind = DeviceKind::Cpu;
     static Device device() { return Device::cpu(); }
 };
@@ -50,6 +62,22 @@ using DriverExec = CpuExec;
 template <class Kernel>
 void launch(CpuExec, const char* name, size_t n, const Kernel& kernel, size_t grain = 64) {
     parallelFor(Device::cpu(), name, n, kernel, grain);
+}
+
+/// Runs kernel(i) for i = 0, 1, ..., n - 1 in order, in the calling thread.
+template <class Kernel>
+void launch(SerialExec, const char* name, size_t n, const Kernel& kernel, size_t grain = 64) {
+    (void)grain;
+    KernelTimer timer(name);
+    for (size_t i = 0; i < n; ++i) kernel(i);
+}
+
+/// The number of CPU threads that kernels launched from here may run on: the current task
+/// arena's concurrency, bounded by a tbb::global_control (the --threads option).
+inline size_t cpuThreadCount() {
+    const size_t arena = size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
+    const size_t allowed = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+    return std::max<size_t>(1, std::min(arena, allowed));
 }
 
 #if defined(__CUDACC__)

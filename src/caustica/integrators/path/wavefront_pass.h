@@ -3,9 +3,16 @@
 // ("active thread compaction"). The stages call the megakernel's step functions (path_kernel.h),
 // so both modes give bit-identical images. Single source (launch.h): templates only, instantiated
 // by path_pass.cpp per device.
+//
+// A pass is traced in chunks of paths. How chunks and stages meet the device is its
+// WavefrontSchedule: a GPU traces one large chunk at a time, each stage a grid over the chunk's
+// queue; a CPU traces one small chunk per thread at once, each stage a serial loop over the
+// chunk (SerialExec), so that the chunk's path state stays in that core's L2 cache between
+// stages and no stage waits for the other threads. The stage code is the same for both.
 #pragma once
 
 #include <algorithm>
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <utility>
@@ -15,7 +22,8 @@
 #include "caustica/integrators/pass_driver.h"
 #include "caustica/integrators/path/path_kernel.h"
 #include "caustica/parallel/buffer.h"
-#include "caustica/parallel/primitives.h"
+#include "caustica/parallel/compact.h"
+#include "caustica/parallel/prefetch.h"
 #include "caustica/util/error.h"
 
 namespace caustica {
@@ -33,23 +41,31 @@ struct Paths {
     uint32_t* selected;   // compacted queue positions
 };
 
-/// Keeps queue[q] for q in [0, count) whose flags[q] is set, in order, writing them to `out`;
-/// returns how many. (Compaction of the flags, then a gather.)
-template <class Exec>
-uint32_t compactQueue(Exec exec, const uint32_t* flags, const uint32_t* queue, size_t count,
-                      uint32_t* selected, uint32_t* out) {
-    if (count == 0) return 0;
-    const uint32_t kept = compactIndices(Exec::device(), Span<const uint32_t>(flags, count),
-                                         Span<uint32_t>(selected, count));
-    launch(exec, "wavefront.gather", kept, [=] CA_HD(size_t q) { out[q] = queue[selected[q]]; }, 256);
-    return kept;
+/// What computeInteraction will read for `hit`, prefetched in two steps a few queue entries
+/// apart: first the triangle's vertex indices, then (once those are in cache) its vertex data.
+CA_HD_INLINE void prefetchTriangle(const SceneView& scene, const Hit& hit) {
+    if (hit.primId >= scene.numTriangles()) return;  // a miss, or not a triangle
+    prefetchRead(&scene.triangles[hit.primId]);
+    prefetchRead(&scene.triangleShape[hit.primId]);
+}
+CA_HD_INLINE void prefetchVertices(const SceneView& scene, const Hit& hit) {
+    if (hit.primId >= scene.numTriangles()) return;
+    const Vec3u tri = scene.triangles[hit.primId];
+    for (uint32_t v : {tri.x, tri.y, tri.z}) {
+        prefetchRead(&scene.positions[v]);
+        if (!scene.normals.empty()) prefetchRead(&scene.normals[v]);
+        if (!scene.uvs.empty()) prefetchRead(&scene.uvs[v]);
+    }
 }
 
 /// Traces the paths of pass slots [begin, begin + n) to completion; returns the rays traced.
+/// `prefetch` > 0: the shade stage prefetches the hit data of the paths that many (and twice as
+/// many) queue entries ahead (a CPU's; 0 on a GPU, where it would only add loads).
 template <class Exec, class Intersector>
 uint64_t traceChunk(Exec exec, const SceneView& scene, const Intersector& accel, const PathSettings& settings,
                     uint64_t seed, int firstSample, int width, int k, size_t begin, size_t n,
-                    PixelSample* samples, const Paths& w, uint32_t* live, uint32_t* next, uint32_t* shadowQueue) {
+                    PixelSample* samples, const Paths& w, uint32_t* live, uint32_t* next, uint32_t* shadowQueue,
+                    size_t prefetch) {
     uint64_t rays = 0;
 
     // ---- Generate: camera rays; the sample's film position goes straight to its pass slot.
@@ -79,6 +95,10 @@ uint64_t traceChunk(Exec exec, const SceneView& scene, const Intersector& accel,
         // ---- Shade: emission, NEE sample, BSDF sample, roulette (or the miss of the scene).
         launch(exec, "wavefront.shade", liveCount, [=] CA_HD(size_t j) {
             const uint32_t i = liveQ[j];
+            if (prefetch > 0) {
+                if (j + 2 * prefetch < liveCount) prefetchTriangle(scene, w.hit[liveQ[j + 2 * prefetch]]);
+                if (j + prefetch < liveCount) prefetchVertices(scene, w.hit[liveQ[j + prefetch]]);
+            }
             bool shadowRay = false;
             if (w.alive[j])
                 w.alive[j] = shadeHit(scene, w.state[i], w.hit[i], w.sampler[i], settings, w.shadow[i], shadowRay);
@@ -105,6 +125,56 @@ uint64_t traceChunk(Exec exec, const SceneView& scene, const Intersector& accel,
     return rays;
 }
 
+/// How a device runs the wavefront (see the file comment): which launches the stages use, how
+/// many chunks are traced at once (`slots`), the paths per chunk and the shade stage's prefetch
+/// distance. Tuned per device; the images do not depend on any of it.
+template <class Exec>
+struct WavefrontSchedule {  // a GPU: one chunk as large as allowed, stages as grids
+    using StageExec = Exec;
+    static size_t slots() { return 1; }
+    static size_t chunk(size_t maxPathsInFlight) { return maxPathsInFlight; }
+    static constexpr size_t prefetch = 0;
+};
+
+template <>
+struct WavefrontSchedule<CpuExec> {  // a CPU: one small chunk per thread, stages as serial loops
+    using StageExec = SerialExec;
+    static size_t slots() { return cpuThreadCount(); }
+    /// About 300 bytes per path (state, sampler, hit, shadow ray, queues): 1024 paths take a
+    /// third of a core's L2 cache (1 MiB here), leaving the rest to the scene; 1024 beat 2048 and
+    /// 4096 on cornell-water (docs/PERFORMANCE.md, 2026-11-26).
+    static size_t chunk(size_t maxPathsInFlight) {
+        return std::min<size_t>(1024, std::max<size_t>(1, maxPathsInFlight / slots()));
+    }
+    static constexpr size_t prefetch = 8;
+};
+
+/// The buffers of `slots` chunks of `chunk` paths each; slot s owns entries [s·chunk, (s+1)·chunk).
+template <class Exec>
+struct ChunkBuffers {
+    Buffer<PathState> state;
+    Buffer<IndependentSampler> sampler;
+    Buffer<Hit> hit;
+    Buffer<ShadowRay> shadow;
+    Buffer<uint32_t> queueA, queueB, shadowQueue, alive, hasShadow, selected;
+
+    void reserve(size_t paths) {
+        if (state.size() >= paths) return;
+        const Device d = Exec::device();
+        state = Buffer<PathState>(d, paths);
+        sampler = Buffer<IndependentSampler>(d, paths);
+        hit = Buffer<Hit>(d, paths);
+        shadow = Buffer<ShadowRay>(d, paths);
+        for (Buffer<uint32_t>* b : {&queueA, &queueB, &shadowQueue, &alive, &hasShadow, &selected})
+            *b = Buffer<uint32_t>(d, paths);
+    }
+    Paths slot(size_t s, size_t chunk) {
+        const size_t o = s * chunk;
+        return Paths{state.data() + o, sampler.data() + o,   hit.data() + o,     shadow.data() + o,
+                     alive.data() + o, hasShadow.data() + o, selected.data() + o};
+    }
+};
+
 }  // namespace wavefront_detail
 
 template <class Exec>
@@ -117,50 +187,48 @@ public:
     }
 
     uint64_t render(uint64_t seed, int firstSampleIndex, SamplePass& pass) override {
+        using Schedule = wavefront_detail::WavefrontSchedule<Exec>;
         const size_t total = pass.samples.size();
+        if (total == 0) return 0;
         // Path ids within a chunk are 32-bit queue entries.
-        const size_t chunk = std::min({maxPaths_, total, size_t(0xffffffffu)});
-        if (chunk == 0) return 0;
-        allocate(chunk, total);
+        const size_t chunk = std::min({Schedule::chunk(maxPaths_), total, size_t(0xffffffffu)});
+        const size_t chunks = (total + chunk - 1) / chunk;
+        const size_t slots = std::min(Schedule::slots(), chunks);
+        if constexpr (Exec::kind != DeviceKind::Cpu)
+            if (samples_.size() < total) samples_ = Buffer<PixelSample>(Exec::device(), total);
+        buffers_.reserve(slots * chunk);
         PixelSample* out = Exec::kind == DeviceKind::Cpu ? pass.samples.data() : samples_.data();
-        const wavefront_detail::Paths w{state_.data(),  sampler_.data(),   hit_.data(),     shadow_.data(),
-                                        alive_.data(), hasShadow_.data(), selected_.data()};
-        uint64_t rays = 0;
+        std::atomic<size_t> nextChunk{0};  // chunks are handed to the slots as they free up
+        std::atomic<uint64_t> rays{0};
         scene_.visit(Exec{}, [&](const auto& intersector) {
-            for (size_t begin = 0; begin < total; begin += chunk)
-                rays += wavefront_detail::traceChunk(Exec{}, scene_.view(), intersector, settings_, seed,
-                                                     firstSampleIndex, pass.width, pass.samplesPerPixel, begin,
-                                                     std::min(chunk, total - begin), out, w, queueA_.data(),
-                                                     queueB_.data(), shadowQueue_.data());
+            const auto traceSlot = [&](size_t s) {
+                const wavefront_detail::Paths w = buffers_.slot(s, chunk);
+                const size_t o = s * chunk;
+                for (size_t c; (c = nextChunk.fetch_add(1)) < chunks;) {
+                    const size_t begin = c * chunk;
+                    rays += wavefront_detail::traceChunk(
+                        typename Schedule::StageExec{}, scene_.view(), intersector, settings_, seed,
+                        firstSampleIndex, pass.width, pass.samplesPerPixel, begin, std::min(chunk, total - begin),
+                        out, w, buffers_.queueA.data() + o, buffers_.queueB.data() + o,
+                        buffers_.shadowQueue.data() + o, Schedule::prefetch);
+                }
+            };
+            if constexpr (Exec::kind == DeviceKind::Cpu)
+                launch(CpuExec{}, "wavefront.chunks", slots, traceSlot, 1);
+            else
+                traceSlot(0);
         });
         if constexpr (Exec::kind != DeviceKind::Cpu) samples_.copyToHost(pass.span());
-        return rays;
+        return rays.load();
     }
     size_t sceneBytes() const override { return scene_.bytes(); }
 
 private:
-    void allocate(size_t chunk, size_t total) {
-        const Device d = Exec::device();
-        if constexpr (Exec::kind != DeviceKind::Cpu)
-            if (samples_.size() < total) samples_ = Buffer<PixelSample>(d, total);
-        if (state_.size() >= chunk) return;
-        state_ = Buffer<PathState>(d, chunk);
-        sampler_ = Buffer<IndependentSampler>(d, chunk);
-        hit_ = Buffer<Hit>(d, chunk);
-        shadow_ = Buffer<ShadowRay>(d, chunk);
-        for (Buffer<uint32_t>* b : {&queueA_, &queueB_, &shadowQueue_, &alive_, &hasShadow_, &selected_})
-            *b = Buffer<uint32_t>(d, chunk);
-    }
-
     DeviceScene scene_;
     PathSettings settings_;
     size_t maxPaths_;
     Buffer<PixelSample> samples_;  // a GPU's
-    Buffer<PathState> state_;
-    Buffer<IndependentSampler> sampler_;
-    Buffer<Hit> hit_;
-    Buffer<ShadowRay> shadow_;
-    Buffer<uint32_t> queueA_, queueB_, shadowQueue_, alive_, hasShadow_, selected_;
+    wavefront_detail::ChunkBuffers<Exec> buffers_;
 };
 
 }  // namespace caustica

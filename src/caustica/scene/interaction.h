@@ -78,21 +78,6 @@ CA_HD_INLINE SurfaceInteraction computeInteraction(const SceneView& scene, const
     si.p = ray.o + ray.d * hit.t;
     if (hit.primId < scene.numTriangles()) {
         const Vec3u tri = scene.triangles[hit.primId];
-#if !CA_GPU_CODE
-        // A large mesh's arrays are cold after Embree's traversal: start the normal and uv loads
-        // beside the positions' instead of after the shape's flags are known (one cache miss
-        // less in the chain index -> shape -> normals; prefetches never fault).
-        if (!scene.normals.empty()) {
-            __builtin_prefetch(scene.normals.data() + tri.x);
-            __builtin_prefetch(scene.normals.data() + tri.y);
-            __builtin_prefetch(scene.normals.data() + tri.z);
-        }
-        if (!scene.uvs.empty()) {
-            __builtin_prefetch(scene.uvs.data() + tri.x);
-            __builtin_prefetch(scene.uvs.data() + tri.y);
-            __builtin_prefetch(scene.uvs.data() + tri.z);
-        }
-#endif
         const Vec3f p0 = scene.positions[tri.x], p1 = scene.positions[tri.y], p2 = scene.positions[tri.z];
         const Float b0 = 1 - hit.b1 - hit.b2;
         si.p = p0 * b0 + p1 * hit.b1 + p2 * hit.b2;  // on the surface, not ray-distance rounded

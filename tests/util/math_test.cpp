@@ -22,3 +22,21 @@ TEST(Math, Exp2ApproxMatchesLibm) {
 
 }  // namespace
 }  // namespace caustica
+
+namespace caustica {
+namespace {
+
+TEST(DivMod, MatchesSixtyFourBitDivision) {
+    const uint64_t ns[] = {0, 1, 7, 255, 65535, 0xffffffffull, 0x100000000ull, 0x123456789abcull,
+                           ~0ull};
+    const uint64_t ds[] = {1, 3, 256, 1000, 0xffffffffull, 0x100000001ull};
+    for (uint64_t n : ns)
+        for (uint64_t d : ds) {
+            const DivMod r = divMod(n, d);
+            EXPECT_EQ(r.quot, n / d) << n << " / " << d;
+            EXPECT_EQ(r.rem, n % d) << n << " % " << d;
+        }
+}
+
+}  // namespace
+}  // namespace caustica

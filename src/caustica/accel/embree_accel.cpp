@@ -127,7 +127,7 @@ void setRay(RTCRay& r, const Ray& ray) {
     r.dir_y = ray.d.y;
     r.dir_z = ray.d.z;
     r.time = 0;
-    r.tfar = std::nextafter(ray.tMax, 0.0f);
+    r.tfar = nextFloatTowardZero(ray.tMax);
     r.mask = ~0u;
     r.id = 0;
     r.flags = 0;

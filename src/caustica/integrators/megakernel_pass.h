@@ -33,7 +33,8 @@ struct CameraSample {
 CA_HD_INLINE CameraSample cameraSample(const Camera& camera, size_t pixel, int width, uint64_t sampleIndex,
                                        uint64_t seed) {
     CameraSample c;
-    const int x = int(pixel % size_t(width)), y = int(pixel / size_t(width));
+    const DivMod xy = divMod(pixel, uint64_t(width));
+    const int x = int(xy.rem), y = int(xy.quot);
     if (camera.eyeWidth > 0) {
         const int eye = x >= camera.eyeWidth ? 1 : 0;
         const size_t eyePixel = size_t(y) * size_t(camera.eyeWidth) + size_t(x - eye * camera.eyeWidth);
@@ -64,8 +65,8 @@ void tracePass(Exec exec, const char* name, const SceneView& view, const Interse
                const Radiance& radiance, uint64_t seed, int firstSample, int width, int k, size_t slots,
                PixelSample* samples, uint32_t* rays, AovOutput aovs) {
     launch(exec, name, slots, [=] CA_HD(size_t slot) {
-        CameraSample c = cameraSample(view.camera, slot / size_t(k), width,
-                                      uint64_t(firstSample) + slot % size_t(k), seed);
+        const DivMod ps = divMod(slot, uint64_t(k));  // pixel, sample within the pass
+        CameraSample c = cameraSample(view.camera, ps.quot, width, uint64_t(firstSample) + ps.rem, seed);
         uint32_t rayCount = 0;
         Spectrum L;
         if (WithAovs) {  // not `if constexpr`: nvcc's extended lambdas cannot first-capture there

@@ -83,7 +83,8 @@ CA_HD_INLINE SurfaceInteraction computeInteraction(const SceneView& scene, const
         si.p = p0 * b0 + p1 * hit.b1 + p2 * hit.b2;  // on the surface, not ray-distance rounded
         si.shape = scene.triangleShape[hit.primId];
         const Shape& shape = scene.shapes[si.shape];
-        si.ng = normalize(cross(p1 - p0, p2 - p0));
+        const Vec3f faceNormal = normalize(cross(p1 - p0, p2 - p0));  // unflipped
+        si.ng = faceNormal;
         si.ns = si.ng;
         if (shape.hasNormals) {
             Vec3f n = scene.normals[tri.x] * b0 + scene.normals[tri.y] * hit.b1 + scene.normals[tri.z] * hit.b2;
@@ -94,10 +95,8 @@ CA_HD_INLINE SurfaceInteraction computeInteraction(const SceneView& scene, const
             }
         }
         // Mitsuba's mesh: dp/du, dp/dv from the uv parameterisation, else (or when the uv
-        // triangle is degenerate) coordinate_system of the unflipped face normal.
-        const Frame faceFrame(normalize(cross(p1 - p0, p2 - p0)));
-        si.dpdu = faceFrame.s;
-        si.dpdv = faceFrame.t;
+        // triangle is degenerate) coordinate_system of the unflipped face normal (built only then).
+        bool uvPartials = false;
         if (shape.hasUVs) {
             const Vec2f uv0 = scene.uvs[tri.x], uv1 = scene.uvs[tri.y], uv2 = scene.uvs[tri.z];
             si.uv = uv0 * b0 + uv1 * hit.b1 + uv2 * hit.b2;
@@ -108,9 +107,15 @@ CA_HD_INLINE SurfaceInteraction computeInteraction(const SceneView& scene, const
                 const Vec3f dp0 = p1 - p0, dp1 = p2 - p0;
                 si.dpdu = (dp0 * duv1.y - dp1 * duv0.y) * invDet;
                 si.dpdv = (dp1 * duv0.x - dp0 * duv1.x) * invDet;
+                uvPartials = true;
             }
         } else {
             si.uv = Vec2f(hit.b1, hit.b2);
+        }
+        if (!uvPartials) {
+            const Frame faceFrame(faceNormal);
+            si.dpdu = faceFrame.s;
+            si.dpdv = faceFrame.t;
         }
         if (shape.flipNormals) {
             si.ng = -si.ng;

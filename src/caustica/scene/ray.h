@@ -35,6 +35,15 @@ CA_HD_INLINE Float intAsFloat(int32_t i) {
     return f;
 }
 
+/// std::nextafter(x, 0.0f), bit for bit, without the call into libm (1% of a glass-caustic sample
+/// when Embree's open ray interval was made with it): the float next to x toward zero; zero gives
+/// +0, NaN stays NaN.
+CA_HD_INLINE Float nextFloatTowardZero(Float x) {
+    if (x == 0) return 0;
+    if (x != x) return x;
+    return intAsFloat(floatAsInt(x) - 1);  // one ulp less magnitude, either sign
+}
+
 /// Offsets a surface point along the geometric normal so that a ray leaving it on the side of `n`
 /// does not hit the surface it starts on. Scale-aware: the offset is a fixed number of ulps of the
 /// coordinate, falling back to a tiny absolute offset near the origin (Wächter and Binder, "A Fast

@@ -172,7 +172,7 @@ public:
         bufferBytes_ = n * (sizeof(SppmPixel) + sizeof(SppmVisiblePoint) + 5 * sizeof(uint32_t) + sizeof(Vec3f) +
                             sizeof(Float) + 4 * sizeof(uint64_t)) +
                        rayBlocks_.size() * sizeof(uint64_t);
-        noteBytes(bufferBytes_);
+        noteBytes(bufferBytes_ + firstRadiance_.size() * sizeof(Spectrum));
         stats_.meanRadius = settings_.initialRadius;
     }
 
@@ -182,7 +182,13 @@ public:
         auto t0 = Clock::now();
         const bool ppm = settings_.mapper == PhotonMapper::Ppm;
         if (!ppm || !hitpointsReady_) {
-            eyePass(iteration);
+            if (firstRadiance_.size() > 0) {
+                // The automatic radius's eye pass was this iteration's (iteration 0, same streams).
+                sppm_detail::addRadiance(Exec{}, entryCount(), firstRadiance_.data(), stats_buf_.data());
+                dropFirstEyePass();
+            } else {
+                eyePass(iteration);
+            }
             hitpointsReady_ = true;
             addLd_ = true;
         }
@@ -237,6 +243,7 @@ public:
         if (pixels.size() != entryCount()) throw Error("sppm: the statistics do not fit the image");
         stats_buf_.copyFromHost(pixels);
         stats_.iterations = iterations;
+        dropFirstEyePass();  // resumed: the next eye pass is the checkpoint's next iteration's
         // ppm: the hitpoints are regenerated from the same streams; their Ld is in the statistics.
         hitpointsReady_ = false;
         addLd_ = settings_.mapper != PhotonMapper::Ppm || iterations == 0;
@@ -263,13 +270,15 @@ private:
         stats_.peakBytes = std::max(stats_.peakBytes, bytes);
     }
 
-    void eyePass(uint64_t iteration) {
+    /// `radiance`: where each entry's radiance goes instead of its Ld (EyeSampling::radiance).
+    void eyePass(uint64_t iteration, Spectrum* radiance = nullptr) {
         const size_t n = entryCount();
         sppm_detail::EyeSampling sampling;
         sampling.perPixel = entriesPerPixel();
         sampling.iteration = iteration;
         sampling.fixedHitpoints = settings_.mapper == PhotonMapper::Ppm;
         sampling.addLd = addLd_;
+        sampling.radiance = radiance;
         const SceneView& view = scene_.view();
         scene_.visit(Exec{}, [&](const auto& intersector) {
             sppm_detail::eyePass(Exec{}, view, intersector, settings_.path, settings_.roughnessThreshold, seed_,
@@ -290,13 +299,15 @@ private:
     }
 
     /// initial_radius 0: kSppmAutoFootprints pixel footprints at the median distance of the first
-    /// iteration's visible points from the camera (an eye pass that adds nothing to the image;
-    /// the same streams as the first iteration's, so the radius is the same on a resume and on
-    /// any thread count); sppmAutoRadius (the scene's size) when no visible point is found.
+    /// iteration's visible points from the camera (the first iteration's eye pass, so the radius
+    /// is the same on a resume and on any thread count); sppmAutoRadius (the scene's size) when
+    /// no visible point is found. The first iteration then uses this eye pass (its visible points
+    /// and, kept aside in firstRadiance_, its Ld) instead of tracing it again.
     Float autoRadius(const Scene& scene) {
-        addLd_ = false;
-        eyePass(0);
-        addLd_ = true;
+        const auto t0 = std::chrono::steady_clock::now();
+        firstRadiance_ = Buffer<Spectrum>(Exec::device(), entryCount());
+        eyePass(0, firstRadiance_.data());
+        stats_.eyeSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         if (visibleCount_ == 0) return sppmAutoRadius(scene);
         sppm_detail::footprints(Exec{}, visibleCount_, list_.data(), points_.data(), scene_.view().camera,
                                 width_, uint32_t(entriesPerPixel()), radii_.data());
@@ -318,6 +329,8 @@ private:
         // keys_ (the Morton keys, no longer needed) holds each entry's cluster.
         kmeansOrder(Exec{}, count, list_.data(), points_.data(), home_.data(), keys_.data(), centres_.data());
     }
+
+    void dropFirstEyePass() { firstRadiance_ = Buffer<Spectrum>(); }
 
     uint32_t photonDepth() const { return sppmMaxDepth(settings_.path, uint32_t(2 * kSppmDepthCap)); }
 
@@ -415,6 +428,7 @@ private:
     Buffer<Vec3f> positions_;
     Buffer<Float> radii_;
     Buffer<uint64_t> phi_, m_, rayBlocks_, counter_;
+    Buffer<Spectrum> firstRadiance_;  // autoRadius's eye pass = iteration 0's, until it is used
     // direction gather
     Buffer<SppmPhoton> store_, sorted_;
     Buffer<Vec3f> photonPositions_;

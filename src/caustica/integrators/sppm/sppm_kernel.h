@@ -88,6 +88,16 @@ CA_HD_INLINE uint64_t sppmAtomicFetchAdd(uint64_t* address, uint64_t value) {
 #endif
 }
 
+/// Adds an eye pass's radiance to a pixel's Ld; invalid radiance (NaN/Inf/negative) is dropped as
+/// the film drops such samples.
+CA_HD_INLINE void sppmAddLd(SppmPixel& p, const Spectrum& L) {
+    if (std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b) && L.r >= 0 && L.g >= 0 && L.b >= 0) {
+        p.ld[0] += double(L.r);
+        p.ld[1] += double(L.g);
+        p.ld[2] += double(L.b);
+    }
+}
+
 /// Longest path (segments) for max_depth (-1: kSppmDepthCap per eye or photon path).
 CA_HD_INLINE uint32_t sppmMaxDepth(const PathSettings& settings, uint32_t cap) {
     return settings.maxDepth < 0 ? cap : uint32_t(settings.maxDepth);
@@ -118,10 +128,12 @@ CA_HD Spectrum sppmEyePath(const SceneView& scene, const Intersector& accel, Sam
         const uint32_t depthHere = path.depth + 1;  // segments from the camera to this hit
         ShadowRay shadow;
         bool hasShadow = false;
-        // Emission, NEE (MIS) and the BSDF sample, as the path tracer does at this vertex.
-        const SurfaceInteraction si = computeInteraction(scene, path.ray, hit);
-        const uint32_t bsdf = scene.shapes[si.shape].bsdf;
+        const uint32_t bsdf = scene.shapes[scene.shapeOf(hit.primId)].bsdf;
         const bool specular = isSpecularBsdf(scene.bsdfs, bsdf, specularBelow);
+        // The interaction only where the visible point needs it (shadeHit makes its own).
+        SurfaceInteraction si;
+        if (!specular) si = computeInteraction(scene, path.ray, hit);
+        // Emission, NEE (MIS) and the BSDF sample, as the path tracer does at this vertex.
         const bool alive = shadeHit(scene, path, hit, sampler, bounded, shadow, hasShadow);
         if (hasShadow) {
             ++rays;

@@ -8,6 +8,7 @@
 #include "caustica/integrators/megakernel_pass.h"
 #include "caustica/integrators/sppm/sppm_kernel.h"
 #include "caustica/integrators/sppm/sppm_photon.h"
+#include "caustica/integrators/sppm/sppm_visible_bsdf.h"
 #include "caustica/parallel/launch.h"
 
 namespace caustica::sppm_detail {
@@ -19,6 +20,7 @@ struct EyeSampling {
     uint64_t iteration = 0;
     bool fixedHitpoints = false;  // ppm
     bool addLd = true;            // false: a ppm resume regenerates the hitpoints only
+    Spectrum* radiance = nullptr; // set: each entry's radiance goes here instead (addRadiance adds it)
 };
 
 template <class Exec, class Intersector>
@@ -36,19 +38,22 @@ void eyePass(Exec exec, const SceneView& view, const Intersector& accel, PathSet
             uint32_t count = 0;
             const Spectrum L = sppmEyePath(view, accel, c.sampler, c.ray, path, uint32_t(kSppmDepthCap),
                                            specularBelow, vp, has, count);
-            // Invalid radiance (NaN/Inf/negative) is dropped as the film drops such samples.
-            if (sampling.addLd && std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b) && L.r >= 0 &&
-                L.g >= 0 && L.b >= 0) {
-                stats[s].ld[0] += double(L.r);
-                stats[s].ld[1] += double(L.g);
-                stats[s].ld[2] += double(L.b);
-            }
+            if (sampling.radiance)
+                sampling.radiance[s] = L;
+            else if (sampling.addLd)
+                sppmAddLd(stats[s], L);
             vp.stat = uint32_t(s);
             points[s] = vp;
             flags[s] = has ? 1u : 0u;
             rays[s] = count;
         },
         16);
+}
+
+/// Adds the radiance an eye pass kept aside (EyeSampling::radiance) to the entries' Ld.
+template <class Exec>
+void addRadiance(Exec exec, size_t entries, const Spectrum* radiance, SppmPixel* stats) {
+    launch(exec, "sppm.add-ld", entries, [=] CA_HD(size_t s) { sppmAddLd(stats[s], radiance[s]); });
 }
 
 /// Morton keys of the listed visible points (keys[j] for list[j]) in the scene's box.
@@ -168,11 +173,13 @@ void gatherPhotons(Exec exec, const SceneView& view, const Lookup& lookup, const
         exec, "sppm.gather", count,
         [=] CA_HD(size_t j) {
             const SppmVisiblePoint& vp = points[list[j]];
+            const SppmVisibleBsdf bsdf(view.bsdfs, vp);  // resolved once for all its photons
+            const auto evalAt = [&](Vec3f wi) { return bsdf.eval(wi); };
             uint64_t sum[3] = {0, 0, 0};
             uint64_t found = 0;
             lookup.forEachPointWithin(vp.si.p, Float(stats[vp.stat].radius), [&](uint32_t i) {
                 const SppmPhoton& ph = photons[i];
-                const Spectrum d = sppmContribution(view, vp, ph.ng, ph.wo, ph.flux, ph.depth, maxDepth);
+                const Spectrum d = sppmContributionWith(vp, evalAt, ph.ng, ph.wo, ph.flux, ph.depth, maxDepth);
                 if (d.isBlack()) return;
                 sum[0] += fixed.toUnits(d.r);
                 sum[1] += fixed.toUnits(d.g);

@@ -45,15 +45,23 @@ CA_HD_INLINE bool consistentSide(Vec3f w, Vec3f ng, Vec3f ns) {
 ///   - it arrived from the back side of vp's surface by a shading normal alone (consistentSide);
 ///     a reflection-only BSDF gives an arrival from the geometric back nothing anyway, a
 ///     transmitting one (rough glass) takes it.
-CA_HD_INLINE Spectrum sppmContribution(const SceneView& scene, const SppmVisiblePoint& vp, Vec3f ng, Vec3f wo,
-                                       const Spectrum& flux, uint32_t k, uint32_t maxDepth) {
+/// `bsdf(wi)`: vp's evalBsdf(…, vp.wo, wi) (sppm_visible_bsdf.h keeps it resolved for a gather).
+template <class EvalBsdf>
+CA_HD_INLINE Spectrum sppmContributionWith(const SppmVisiblePoint& vp, const EvalBsdf& bsdf, Vec3f ng, Vec3f wo,
+                                           const Spectrum& flux, uint32_t k, uint32_t maxDepth) {
     if (vp.depth + k > maxDepth) return {};
     if (!(dot(vp.si.ng, ng) > 0)) return {};
     if (!consistentSide(wo, vp.si.ng, vp.si.ns)) return {};
     const Float c = std::fabs(dot(vp.si.ns, wo));
     if (!(c > Float(1e-7))) return {};
     // evalBsdf is f · |cos θi| about the shading normal; the photon's flux wants f alone.
-    return vp.beta * evalBsdf(scene.bsdfs, vp.bsdf, vp.si, vp.wo, wo) * (flux * (1 / c));
+    return vp.beta * bsdf(wo) * (flux * (1 / c));
+}
+
+CA_HD_INLINE Spectrum sppmContribution(const SceneView& scene, const SppmVisiblePoint& vp, Vec3f ng, Vec3f wo,
+                                       const Spectrum& flux, uint32_t k, uint32_t maxDepth) {
+    return sppmContributionWith(
+        vp, [&](Vec3f wi) { return evalBsdf(scene.bsdfs, vp.bsdf, vp.si, vp.wo, wi); }, ng, wo, flux, k, maxDepth);
 }
 
 /// Traces one photon path (`maxDepth`: the longest whole path, eye part included; every eye part

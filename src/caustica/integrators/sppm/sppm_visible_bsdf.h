@@ -1,0 +1,67 @@
+// sppm_visible_bsdf.h — the BSDF of one visible point, resolved once for the many photons that
+// visible point gathers. evalBsdf (scene/bsdf.h) walks the BSDF tree, builds the shading frame,
+// resolves twosided / bumpmap / normalmap, applies the textures and turns wo into the local frame
+// at every call; for one visible point all of that depends only on (si, wo), which are fixed, and
+// only wi changes from photon to photon. The gather (sppm_passes.h) evaluated it ~30 times per
+// visible point per iteration at 256x256 on cornell-water, half of the gather's time.
+#pragma once
+
+#include "caustica/integrators/sppm/sppm_kernel.h"
+#include "caustica/scene/bsdf.h"
+
+namespace caustica {
+
+/// evalBsdf(bsdfs, vp.bsdf, vp.si, vp.wo, wi) for a fixed visible point, bit for bit the same
+/// value: when the tree has exactly one leaf for vp.wo (a plain BSDF, or one under twosided,
+/// bumpmap, normalmap, or a blend/mask with one child of weight > 0), that leaf's resolved frame,
+/// textured parameters, local wo and weight are kept and each eval() does what LeafOps::eval and
+/// subtreeEval do with them, in the same floating-point operations; other trees call evalBsdf.
+/// Holds a pointer into itself (the textured copy): not copyable.
+class SppmVisibleBsdf {
+public:
+    CA_HD SppmVisibleBsdf(Span<const Bsdf> bsdfs, const SppmVisiblePoint& vp) : bsdfs_(bsdfs), vp_(vp) {
+        using namespace bsdf_detail;
+        const LeafOps ops{bsdfs, vp.si};
+        uint32_t leaves = 0, leaf = 0;
+        bool flip = false;
+        forEachLeaf(bsdfs, ops, vp.bsdf, false, vp.wo, [&](uint32_t l, Float w, bool lf) {
+            ++leaves;
+            leaf = l;
+            weight_ = w;
+            flip = lf;
+        });
+        single_ = leaves == 1;
+        none_ = leaves == 0;
+        if (!single_) return;
+        resolved_ = resolve(bsdfs, leaf, vp.si, vp.wo, flip);
+        leafBsdf_ = &applyBsdfTextures(*resolved_.bsdf, vp.si, scratch_);
+        woLocal_ = resolved_.frame.toLocal(vp.wo);
+    }
+    SppmVisibleBsdf(const SppmVisibleBsdf&) = delete;
+    SppmVisibleBsdf& operator=(const SppmVisibleBsdf&) = delete;
+
+    /// f(vp.wo, wi) · |cosθi| (evalBsdf's value).
+    CA_HD Spectrum eval(Vec3f wi) const {
+        using namespace bsdf_detail;
+        if (!single_) return none_ ? Spectrum{} : evalBsdf(bsdfs_, vp_.bsdf, vp_.si, vp_.wo, wi);
+        // subtreeEval's sum over the one leaf, of LeafOps::eval's value.
+        Spectrum sum;
+        const Spectrum f = sameSide(resolved_, wi) ? evalLocal(*leafBsdf_, woLocal_, resolved_.frame.toLocal(wi)) *
+                                                         shadowTerminator(resolved_, wi)
+                                                   : Spectrum{};
+        sum += f * weight_;
+        return sum;
+    }
+
+private:
+    Span<const Bsdf> bsdfs_;
+    const SppmVisiblePoint& vp_;
+    bool single_ = false, none_ = false;
+    Float weight_ = 0;
+    bsdf_detail::Resolved resolved_{};
+    const Bsdf* leafBsdf_ = nullptr;
+    bsdf_detail::BsdfScratch scratch_;
+    Vec3f woLocal_;
+};
+
+}  // namespace caustica

@@ -22,15 +22,6 @@ struct Case {
     uint32_t id = 0;
 };
 
-Bsdf adapter(BsdfType type, uint32_t front, uint32_t texture, Float scale = 1) {
-    Bsdf b;
-    b.type = type;
-    b.front = front;
-    b.frameTexture = texture;
-    b.bumpScale = scale;
-    return b;
-}
-
 std::vector<Case> cases() {
     std::vector<Case> c;
     c.push_back({"diffuse", {test::diffuse(Spectrum(0.6f, 0.5f, 0.4f))}, 0});
@@ -43,8 +34,8 @@ std::vector<Case> cases() {
     textured.numTextures = 1;
     textured.textures[0] = BsdfTexture{BsdfParam::Reflectance, 0};
     c.push_back({"textured diffuse", {textured}, 0});
-    c.push_back({"bumpmap", {test::diffuse(Spectrum(0.7f)), adapter(BsdfType::BumpMap, 0, 0, 3)}, 1});
-    c.push_back({"normalmap", {test::roughConductor(0.2f, 0.2f), adapter(BsdfType::NormalMap, 0, 1)}, 1});
+    c.push_back({"bumpmap", {test::diffuse(Spectrum(0.7f)), test::frameAdapter(BsdfType::BumpMap, 0, 0, 3)}, 1});
+    c.push_back({"normalmap", {test::roughConductor(0.2f, 0.2f), test::frameAdapter(BsdfType::NormalMap, 0, 1)}, 1});
     Bsdf blend;
     blend.type = BsdfType::Blend;
     blend.front = 0;

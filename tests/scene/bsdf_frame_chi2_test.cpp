@@ -93,15 +93,6 @@ void runFrameChi2(const FrameCase& c, uint64_t seed) {
     EXPECT_LE(bad, test::kBsdfChi2Samples / 50000) << c.name << ": " << firstBad;
 }
 
-Bsdf adapter(BsdfType type, uint32_t nested, uint32_t texture, Float scale = 1) {
-    Bsdf b;
-    b.type = type;
-    b.front = nested;
-    b.frameTexture = texture;
-    b.bumpScale = scale;
-    return b;
-}
-
 Bsdf twoSided(uint32_t front, uint32_t back) {
     Bsdf b;
     b.type = BsdfType::TwoSided;
@@ -128,21 +119,21 @@ std::vector<FrameCase> makeCases() {
                          256});
     }
     cases.push_back({"bumpmap_diffuse",
-                     {test::diffuse(Spectrum(0.7f)), adapter(BsdfType::BumpMap, 0, 0, 3)}, 1, 60,
+                     {test::diffuse(Spectrum(0.7f)), test::frameAdapter(BsdfType::BumpMap, 0, 0, 3)}, 1, 60,
                      10});
     cases.push_back({"bumpmap_roughconductor",
-                     {test::roughConductor(0.2f, 0.2f), adapter(BsdfType::BumpMap, 0, 0, 2)}, 1, 30,
+                     {test::roughConductor(0.2f, 0.2f), test::frameAdapter(BsdfType::BumpMap, 0, 0, 2)}, 1, 30,
                      80});
     cases.push_back({"normalmap_diffuse",
-                     {test::diffuse(Spectrum(0.7f)), adapter(BsdfType::NormalMap, 0, 1)}, 1, 70,
+                     {test::diffuse(Spectrum(0.7f)), test::frameAdapter(BsdfType::NormalMap, 0, 1)}, 1, 70,
                      200});
     cases.push_back({"twosided_bumpmap_back",
-                     {test::diffuse(Spectrum(0.7f)), adapter(BsdfType::BumpMap, 0, 0, 3),
+                     {test::diffuse(Spectrum(0.7f)), test::frameAdapter(BsdfType::BumpMap, 0, 0, 3),
                       twoSided(1, 1)},
                      2, 50, 60, true});
     cases.push_back({"normalmap_twosided_back",
                      {test::roughConductor(0.1f, 0.3f), twoSided(0, 0),
-                      adapter(BsdfType::NormalMap, 1, 1)},
+                      test::frameAdapter(BsdfType::NormalMap, 1, 1)},
                      2, 50, 60, true});
     return cases;
 }
@@ -184,8 +175,8 @@ TEST(FrameChi2, FlatPerturbationIsTheIdentity) {
     // Isotropic: Mitsuba's adapters orient the perturbed frame's s axis from dp/du in mixed
     // coordinates, which turns an anisotropic lobe even under a flat map.
     const std::vector<Bsdf> bsdfs{test::roughConductor(0.2f, 0.2f),
-                                  adapter(BsdfType::BumpMap, 0, 0, 5),
-                                  adapter(BsdfType::NormalMap, 0, 1)};
+                                  test::frameAdapter(BsdfType::BumpMap, 0, 0, 5),
+                                  test::frameAdapter(BsdfType::NormalMap, 0, 1)};
     SurfaceInteraction si = test::surfaceAt(Vec3f(0, 0, 1));
     si.dpdu = Vec3f(1, 0.5f, 0);
     si.dpdv = Vec3f(-0.5f, 1, 0);

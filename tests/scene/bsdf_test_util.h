@@ -111,6 +111,17 @@ inline uint32_t addTwoSided(std::vector<Bsdf>& bsdfs, const Bsdf& front, const B
     return uint32_t(bsdfs.size() - 1);
 }
 
+/// A bumpmap or normalmap adapter around bsdfs[nested], its frame read from texture `texture`
+/// (`scale`: the bump height's scale).
+inline Bsdf frameAdapter(BsdfType type, uint32_t nested, uint32_t texture, Float scale = 1) {
+    Bsdf b;
+    b.type = type;
+    b.front = nested;
+    b.frameTexture = texture;
+    b.bumpScale = scale;
+    return b;
+}
+
 /// |a - b| within a relative tolerance (with a tiny absolute floor for values near zero).
 inline bool relClose(double a, double b, double rel = 1e-3, double absFloor = 1e-6) {
     return std::fabs(a - b) <= rel * std::max(std::fabs(a), std::fabs(b)) + absFloor;

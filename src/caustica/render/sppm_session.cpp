@@ -160,18 +160,15 @@ private:
     std::vector<double> cumulativeEstimate() const {
         const std::vector<SppmPixel> entries = driver_->pixels();
         const uint32_t perPixel = driver_->entriesPerPixel();
-        const double photons = double(driver_->settings().photonCount);
-        const double ldTimes =
-            driver_->settings().mapper == PhotonMapper::Ppm ? double(driver_->stats().iterations) : 1.0;
+        const uint64_t iterations = driver_->stats().iterations, photons = driver_->settings().photonCount;
+        const uint64_t ldCount = driver_->settings().mapper == PhotonMapper::Ppm ? 1 : iterations;
         const size_t pixels = entries.size() / perPixel;
         std::vector<double> sum(3 * pixels, 0.0);
         for (size_t p = 0; p < pixels; ++p)
             for (uint32_t j = 0; j < perPixel; ++j) {
-                const SppmPixel& e = entries[p * perPixel + j];
-                const double area = 3.14159265358979323846 * e.radius * e.radius;
-                for (int c = 0; c < 3; ++c)
-                    sum[3 * p + size_t(c)] += (e.ld[c] * ldTimes + (area > 0 ? e.tau[c] / (photons * area) : 0.0)) /
-                                              double(perPixel);
+                double L[3];
+                sppmPixelRadiance(entries[p * perPixel + j], iterations, photons, ldCount, L);
+                for (int c = 0; c < 3; ++c) sum[3 * p + size_t(c)] += L[c] * double(iterations) / double(perPixel);
             }
         return sum;
     }

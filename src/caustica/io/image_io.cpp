@@ -36,11 +36,17 @@ using Bytes = std::vector<unsigned char>;
 
 enum class Format { Exr, Pfm, Png, Jpeg, Hdr };
 
-Format formatOf(const std::string& path) {
+/// The file name's extension after its last dot, in lower case ("" without one).
+std::string lowerExtension(const std::string& path) {
     const std::string name = std::filesystem::path(path).filename().string();
     const size_t dot = name.rfind('.');
     std::string ext = dot == std::string::npos ? "" : name.substr(dot + 1);
     for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
+}
+
+Format formatOf(const std::string& path) {
+    const std::string ext = lowerExtension(path);
     if (ext == "exr") return Format::Exr;
     if (ext == "pfm") return Format::Pfm;
     if (ext == "png") return Format::Png;
@@ -910,5 +916,7 @@ ImageMetadata readImageMetadata(const std::string& path) {
         return ImageMetadata();
     });
 }
+
+bool isExrPath(const std::string& path) { return lowerExtension(path) == "exr"; }
 
 }  // namespace caustica

@@ -30,6 +30,10 @@ struct ImageMetadata {
 /// file is written under a temporary name and renamed into place, so a failed write never
 /// leaves a half-written image behind. Metadata keys that clash with the format's own fields
 /// (e.g. EXR "compression") are refused.
+/// Whether `path` names an OpenEXR file (its extension, in any case, is .exr): the format
+/// writeImage and readImage choose for it.
+bool isExrPath(const std::string& path);
+
 void writeImage(const std::string& path, const Image& image, const ImageMetadata& metadata = {});
 
 /// Reads an image, linear RGB.

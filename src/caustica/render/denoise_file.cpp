@@ -1,7 +1,6 @@
 // denoise_file.cpp — `caustica denoise` of a single-view or multi-view file (denoise_file.h).
 #include "caustica/render/denoise_file.h"
 
-#include <cctype>
 #include <filesystem>
 
 #include "caustica/io/exr_feature_layers.h"
@@ -13,12 +12,6 @@
 
 namespace caustica {
 namespace {
-
-bool isExr(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return ext == ".exr";
-}
 
 /// Refuses an output that is the input itself (the noisy image is always kept).
 void checkNotInput(const std::string& input, const std::string& output) {
@@ -53,7 +46,7 @@ DenoiseFileResult denoiseStereoPair(const DenoiseFileRequest& request, const Den
             throw Error(std::string(option) + ": " + in +
                         " is a multi-view EXR, whose guides are each view's own layers; guide files apply to "
                         "single-view images");
-    if (!isExr(request.output))
+    if (!isExrPath(request.output))
         throw Error(request.output, 0, "a multi-view input is written as a multi-view EXR: give an .exr output");
     const StereoImagePair pair = readMultiViewExr(in);  // refuses views other than left and right
     DenoiseFileResult result{pair.left.width, pair.left.height, 2};
@@ -73,13 +66,13 @@ DenoiseFileResult denoiseStereoPair(const DenoiseFileRequest& request, const Den
 DenoiseFileResult denoiseFile(const DenoiseFileRequest& request, const DenoiseSettings& settings) {
     checkNotInput(request.input, request.output);
     checkImageOutputPath(request.output);
-    if (isExr(request.input)) {
+    if (isExrPath(request.input)) {
         const std::vector<std::string> views = exrViews(request.input);
         if (!views.empty()) return denoiseStereoPair(request, settings);
     }
     const Image color = readImage(request.input);
     DenoiseFeatures features;
-    if (!request.ignoreLayers && isExr(request.input)) features = readFeatureLayers(request.input);
+    if (!request.ignoreLayers && isExrPath(request.input)) features = readFeatureLayers(request.input);
     if (!request.albedo.empty()) features.albedo = readImage(request.albedo);
     if (!request.normal.empty()) features.normal = readImage(request.normal, ImageReadOptions{.raw = true});
     if (!request.depth.empty()) features.depth = readImage(request.depth);

@@ -5,20 +5,13 @@
 
 #include "caustica/io/exr_layers.h"
 #include "caustica/io/exr_multiview.h"
+#include "caustica/io/image_io.h"
 #include "caustica/render/render_outputs.h"
 #include "caustica/util/error.h"
 
 namespace caustica {
 
 namespace fs = std::filesystem;
-
-namespace {
-bool isExr(const std::string& path) {
-    const std::string ext = fs::path(path).extension().string();
-    return ext == ".exr" || ext == ".EXR";
-}
-
-}  // namespace
 
 std::string stereoEyePath(const std::string& exrPath, int eye) {
     fs::path p(exrPath);
@@ -30,7 +23,7 @@ std::string stereoEyePath(const std::string& exrPath, int eye) {
 std::vector<std::string> stereoOutputFiles(const std::vector<std::string>& outputs, const StereoOutputs& s) {
     std::vector<std::string> files;
     for (const std::string& out : outputs) {
-        if (s.enabled && s.separate && isExr(out)) {
+        if (s.enabled && s.separate && isExrPath(out)) {
             files.push_back(stereoEyePath(out, 0));
             files.push_back(stereoEyePath(out, 1));
         } else {

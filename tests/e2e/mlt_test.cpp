@@ -171,7 +171,9 @@ TEST(MltSplatBatches, TheImageDoesNotDependOnTheBatchAndDevelopingChangesNothing
         const Image one = render(1, false), three = render(3, false), all = render(16, false);
         EXPECT_LT(maxRelativeDifference(three, one), 1e-5) << int(splat);
         EXPECT_LT(maxRelativeDifference(all, one), 1e-5) << int(splat);  // every splat still pending
-        if (splat == MltSplatKind::Sort) EXPECT_EQ(render(3, true).rgb, three.rgb);
+        if (splat == MltSplatKind::Sort) {
+            EXPECT_EQ(render(3, true).rgb, three.rgb);
+        }
     }
 }
 

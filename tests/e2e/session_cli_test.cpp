@@ -170,9 +170,9 @@ TEST_F(SessionCli, UnwritableOutputsFailBeforeRendering) {
 }
 
 TEST_F(SessionCli, NonFiniteAndOutOfRangeNumbersAreRefusedReadably) {
-    for (const std::string& bad : {"--time nan", "--time inf", "--time -1", "--spp inf", "--checkpoint-every nan",
-                                   "--integrator mlt --mlt-large-step nan", "--integrator mlt --mlt-s1 inf",
-                                   "--integrator mlt --mlt-chains 0"}) {
+    for (const char* bad : {"--time nan", "--time inf", "--time -1", "--spp inf", "--checkpoint-every nan",
+                            "--integrator mlt --mlt-large-step nan", "--integrator mlt --mlt-s1 inf",
+                            "--integrator mlt --mlt-chains 0"}) {
         const CliResult r = runCli("render " + path("box.xml") + small + bad + " -o " + path("a.exr"));
         EXPECT_NE(r.exitCode, 0) << bad << ": " << r.output;
         EXPECT_EQ(r.output.find("e+308"), std::string::npos) << bad << ": " << r.output;

@@ -125,7 +125,9 @@ TEST(ExrTruncation, EveryLayoutReadsBackWhole) {
         ASSERT_EQ(image.height, kHeight);
         const bool lossy =
             name.find("pxr24") != std::string::npos || name.find("dwa") != std::string::npos;
-        if (!lossy) EXPECT_EQ(image.rgb, expected.rgb);
+        if (!lossy) {
+            EXPECT_EQ(image.rgb, expected.rgb);
+        }
     }
 }
 
@@ -148,8 +150,9 @@ TEST(ExrTruncation, CutShortIsRefusedWhateverTheLayout) {
                 ADD_FAILURE() << "no error";
             } catch (const Error& e) {
                 EXPECT_EQ(e.file(), p);
-                if (keep >= bytes.size() / 2)
+                if (keep >= bytes.size() / 2) {
                     EXPECT_NE(e.reason().find("truncated"), std::string::npos) << e.what();
+                }
             }
         }
     }

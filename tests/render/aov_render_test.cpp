@@ -138,7 +138,9 @@ TEST(AovRender, EveryIntegratorFillsTheAovs) {
                 EXPECT_NEAR(a.at(x, y, 0), 4.99f, 1e-5f);
                 EXPECT_EQ(a.at(x, y, 16), 1.0f);
             }
-        if (std::string(integrator) == "direct") EXPECT_TRUE(a.values == path.values);
+        if (std::string(integrator) == "direct") {
+            EXPECT_TRUE(a.values == path.values);
+        }
     }
 }
 
@@ -300,7 +302,9 @@ TEST(AovRender, BatchVarianceIsZeroWhereTheEstimateIsDeterministic) {
         for (int y = 0; y < 16; ++y)
             for (int x = 0; x < 16; ++x)
                 for (size_t c = 0; c < 3; ++c) {
-                    if (x < 12) EXPECT_EQ(a.at(x, y, c), 0.0f) << x << "," << y;
+                    if (x < 12) {
+                        EXPECT_EQ(a.at(x, y, c), 0.0f) << x << "," << y;
+                    }
                     lit += x >= 13 && a.at(x, y, c) > 0;
                 }
         EXPECT_GT(lit, 20);

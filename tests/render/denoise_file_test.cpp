@@ -69,7 +69,7 @@ TEST(DenoiseFile, MultiViewIsDenoisedViewByViewWithItsOwnGuides) {
     const AovImage leftGuides = guides(kW / 2, 1e-3f), rightGuides = guides(kW / 3, 4e-3f);
     const std::string in = dir.path("pair.exr"), out = dir.path("pair.denoised.exr");
     writeMultiViewExr(in, left, right, {}, leftGuides, rightGuides);
-    const DenoiseFileResult r = denoiseFile(DenoiseFileRequest{in, out}, nlm());
+    const DenoiseFileResult r = denoiseFile(DenoiseFileRequest{.input = in, .output = out}, nlm());
     EXPECT_EQ(r.views, 2);
     EXPECT_EQ(r.width, kW);
     EXPECT_TRUE(r.albedo && r.normal && r.depth && r.variance);
@@ -82,7 +82,7 @@ TEST(DenoiseFile, MultiViewIsDenoisedViewByViewWithItsOwnGuides) {
     EXPECT_FALSE(got.right.rgb == denoise(right, featuresFromAovs(leftGuides), nlm()).rgb);
     EXPECT_EQ(readImageMetadata(out).entries.at("caustica.denoiser"), "nlm");
     // --ignore-layers: no guides in either view.
-    DenoiseFileRequest bare{in, dir.path("bare.exr")};
+    DenoiseFileRequest bare{.input = in, .output = dir.path("bare.exr")};
     bare.ignoreLayers = true;
     EXPECT_FALSE(denoiseFile(bare, nlm()).albedo);
     EXPECT_TRUE(readMultiViewExr(dir.path("bare.exr")).right.rgb == denoise(right, DenoiseFeatures{}, nlm()).rgb);
@@ -93,7 +93,7 @@ TEST(DenoiseFile, SingleViewFileIsDenoisedAsBefore) {
     const Image noisy = noisyImage(3);
     writeImage(dir.path("a.exr"), noisy);
     writeImage(dir.path("albedo.exr"), noisy);
-    DenoiseFileRequest req{dir.path("a.exr"), dir.path("b.exr")};
+    DenoiseFileRequest req{.input = dir.path("a.exr"), .output = dir.path("b.exr")};
     req.albedo = dir.path("albedo.exr");
     const DenoiseFileResult r = denoiseFile(req, nlm());
     EXPECT_EQ(r.views, 1);
@@ -130,7 +130,9 @@ void expectRefused(const DenoiseFileRequest& req, const std::string& part) {
         EXPECT_NE(what.find(part), std::string::npos) << what;
         EXPECT_EQ(what.find('\n'), std::string::npos) << what;  // one line
     }
-    if (req.output != req.input) EXPECT_FALSE(std::filesystem::exists(req.output)) << req.output;
+    if (req.output != req.input) {
+        EXPECT_FALSE(std::filesystem::exists(req.output)) << req.output;
+    }
 }
 
 TEST(DenoiseFile, RefusesOtherViewsGuideFilesAndNonExrOutputsForMultiView) {
@@ -140,7 +142,7 @@ TEST(DenoiseFile, RefusesOtherViewsGuideFilesAndNonExrOutputsForMultiView) {
     writeViews(dir.path("swapped.exr"), {"right", "left"});
     expectRefused({dir.path("swapped.exr"), dir.path("o2.exr")}, "expected the views left and right");
     writeMultiViewExr(dir.path("pair.exr"), noisyImage(1), noisyImage(2));
-    DenoiseFileRequest withAlbedo{dir.path("pair.exr"), dir.path("o3.exr")};
+    DenoiseFileRequest withAlbedo{.input = dir.path("pair.exr"), .output = dir.path("o3.exr")};
     withAlbedo.albedo = dir.path("pair.exr");
     expectRefused(withAlbedo, "--albedo");
     expectRefused({dir.path("pair.exr"), dir.path("o4.png")}, "multi-view EXR");

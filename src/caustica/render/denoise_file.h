@@ -14,7 +14,7 @@ namespace caustica {
 struct DenoiseFileRequest {
     std::string input, output;
     /// Guide files overriding the input's layers (single-view inputs only); empty: none.
-    std::string albedo, normal, depth, variance;
+    std::string albedo{}, normal{}, depth{}, variance{};
     bool ignoreLayers = false;  ///< do not use the input EXR's AOV layers
 };
 

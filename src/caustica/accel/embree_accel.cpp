@@ -6,6 +6,7 @@
 #include <cstring>
 #include <limits>
 #include <type_traits>
+#include <utility>
 
 #include <embree3/rtcore.h>
 
@@ -225,11 +226,20 @@ void occludedPackets(const EmbreeIntersector& it, int n, const Ray* const* rays,
     }
 }
 
-/// The widest packet Embree runs natively on this CPU (its ISA), or 1.
-int nativePacketWidth(RTCDevice device) {
-    if (rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED)) return 16;
-    if (rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED)) return 8;
-    if (rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY4_SUPPORTED)) return 4;
+/// Rays per Embree packet call: 4 where Embree runs 4-wide packets natively, else 1 (single rays).
+/// Wider packets are supported (and tested) but were slower on this project's AVX-512 VM: on
+/// incoherent bounce rays 16-wide packets cost more traversal than they save, and the shading
+/// between the trace stages ran slower beside them; 4-wide was the fastest on every bundled scene
+/// (docs/PERFORMANCE.md, 2026-11-26, Embree packet queries).
+constexpr int kPreferredPacketWidth = 4;
+
+/// The widest packet up to `maxWidth` that Embree runs natively on this CPU (its ISA), or 1.
+int widestNativePacket(RTCDevice device, int maxWidth) {
+    const std::pair<int, RTCDeviceProperty> native[] = {{16, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED},
+                                                        {8, RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED},
+                                                        {4, RTC_DEVICE_PROPERTY_NATIVE_RAY4_SUPPORTED}};
+    for (const auto& [width, property] : native)
+        if (width <= maxWidth && rtcGetDeviceProperty(device, property)) return width;
     return 1;
 }
 
@@ -244,7 +254,8 @@ EmbreeScene::EmbreeScene(const Scene& scene)
         throw Error(std::string("Embree: cannot create device: ") +
                     errorName(rtcGetDeviceError(nullptr)));
     rtcSetDeviceErrorFunction(device_, errorCallback, &lastMessage_);
-    packetWidth_ = nativePacketWidth(device_);
+    nativePacketWidth_ = widestNativePacket(device_, 16);
+    packetWidth_ = widestNativePacket(device_, kPreferredPacketWidth);
     try {
         scene_ = rtcNewScene(device_);
         check("rtcNewScene");

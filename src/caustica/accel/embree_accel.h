@@ -19,8 +19,8 @@ namespace caustica {
 /// (0, ray.tMax) and returns true, leaving `hit` unchanged on a miss; `occluded` reports any hit in
 /// (0, ray.tMax). Host only; a cheap value type, valid while its EmbreeScene lives.
 /// The packet queries (reached through intersectPacket / occludedPacket, intersector.h) answer up
-/// to kPacketSize rays with rtcIntersect16/8/4 and rtcOccluded16/8/4, `packetWidth` rays per call:
-/// the widest packet the Embree library runs natively on this CPU (1: the single-ray loop).
+/// to kPacketSize rays with rtcIntersect16/8/4 and rtcOccluded16/8/4, `packetWidth` rays per call
+/// (chosen by EmbreeScene from the widths Embree runs natively on this CPU; 1: single rays).
 struct EmbreeIntersector {
     static constexpr int kPacketSize = 16;
 
@@ -51,8 +51,11 @@ public:
     EmbreeIntersector intersector() const {
         return EmbreeIntersector{scene_, numTriangles_, firstCylinder_, packetWidth_};
     }
-    /// Rays per Embree packet call (16, 8, 4, or 1 where the library has no native packets).
+    /// Rays per Embree packet call: 4 where Embree runs 4-wide packets natively on this CPU, else 1
+    /// (single rays). 8 and 16 work too (set EmbreeIntersector::packetWidth) but were slower here.
     int packetWidth() const { return packetWidth_; }
+    /// The widest packet (16, 8, 4 or 1) Embree runs natively on this CPU.
+    int nativePacketWidth() const { return nativePacketWidth_; }
     double buildMilliseconds() const { return buildMilliseconds_; }
 
 private:
@@ -66,6 +69,7 @@ private:
     uint32_t numTriangles_ = 0;
     uint32_t firstCylinder_ = 0;
     int packetWidth_ = 1;
+    int nativePacketWidth_ = 1;
     double buildMilliseconds_ = 0;
     std::string lastMessage_;  // filled by the device's error callback
 };

@@ -151,29 +151,22 @@ Hit toHit(const EmbreeIntersector& it, float tfar, unsigned geomID, unsigned pri
 
 // ---- packets: Embree's packet types and calls by width ----
 
+template <class RH, class R, void (*Intersect)(const int*, RTCScene, RTCIntersectContext*, RH*),
+          void (*Occluded)(const int*, RTCScene, RTCIntersectContext*, R*)>
+struct PacketCalls {
+    using RayHit = RH;
+    using RayT = R;
+    static void intersect(const int* v, RTCScene s, RTCIntersectContext* c, RH* r) { Intersect(v, s, c, r); }
+    static void occluded(const int* v, RTCScene s, RTCIntersectContext* c, R* r) { Occluded(v, s, c, r); }
+};
 template <int W>
 struct Packet;
 template <>
-struct Packet<4> {
-    using RayHit = RTCRayHit4;
-    using RayT = RTCRay4;
-    static void intersect(const int* v, RTCScene s, RTCIntersectContext* c, RayHit* r) { rtcIntersect4(v, s, c, r); }
-    static void occluded(const int* v, RTCScene s, RTCIntersectContext* c, RayT* r) { rtcOccluded4(v, s, c, r); }
-};
+struct Packet<4> : PacketCalls<RTCRayHit4, RTCRay4, rtcIntersect4, rtcOccluded4> {};
 template <>
-struct Packet<8> {
-    using RayHit = RTCRayHit8;
-    using RayT = RTCRay8;
-    static void intersect(const int* v, RTCScene s, RTCIntersectContext* c, RayHit* r) { rtcIntersect8(v, s, c, r); }
-    static void occluded(const int* v, RTCScene s, RTCIntersectContext* c, RayT* r) { rtcOccluded8(v, s, c, r); }
-};
+struct Packet<8> : PacketCalls<RTCRayHit8, RTCRay8, rtcIntersect8, rtcOccluded8> {};
 template <>
-struct Packet<16> {
-    using RayHit = RTCRayHit16;
-    using RayT = RTCRay16;
-    static void intersect(const int* v, RTCScene s, RTCIntersectContext* c, RayHit* r) { rtcIntersect16(v, s, c, r); }
-    static void occluded(const int* v, RTCScene s, RTCIntersectContext* c, RayT* r) { rtcOccluded16(v, s, c, r); }
-};
+struct Packet<16> : PacketCalls<RTCRayHit16, RTCRay16, rtcIntersect16, rtcOccluded16> {};
 
 /// Fills the lanes of one packet from rays[0..m) and the valid mask: a lane is traced when it
 /// holds a ray with tMax > 0 (the single-ray queries answer the others "no hit" without Embree);
@@ -187,13 +180,18 @@ void fillPacket(R& r, int (&valid)[W], int m, const Ray* const* rays) {
     }
 }
 
+/// f(context, first, m) for the packets [first, first + m) of n rays, m <= W.
+template <int W, class F>
+void forEachPacket(int n, F&& f) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    for (int first = 0; first < n; first += W) f(context, first, std::min(W, n - first));
+}
+
 template <int W>
 void intersectPackets(const EmbreeIntersector& it, int n, const Ray* const* rays, Hit* const* hits,
                       uint32_t* found) {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    for (int first = 0; first < n; first += W) {
-        const int m = std::min(W, n - first);
+    forEachPacket<W>(n, [&](RTCIntersectContext& context, int first, int m) {
         alignas(64) int valid[W];
         alignas(64) typename Packet<W>::RayHit rh;
         fillPacket<W>(rh.ray, valid, m, rays + first);
@@ -209,21 +207,18 @@ void intersectPackets(const EmbreeIntersector& it, int n, const Ray* const* rays
                                            rh.hit.u[k], rh.hit.v[k])
                                    : Hit{};
         }
-    }
+    });
 }
 
 template <int W>
 void occludedPackets(const EmbreeIntersector& it, int n, const Ray* const* rays, uint32_t* occluded) {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    for (int first = 0; first < n; first += W) {
-        const int m = std::min(W, n - first);
+    forEachPacket<W>(n, [&](RTCIntersectContext& context, int first, int m) {
         alignas(64) int valid[W];
         alignas(64) typename Packet<W>::RayT r;
         fillPacket<W>(r, valid, m, rays + first);
         Packet<W>::occluded(valid, it.scene, &context, &r);
         for (int k = 0; k < m; ++k) occluded[first + k] = valid[k] && r.tfar[k] < 0;
-    }
+    });
 }
 
 /// Rays per Embree packet call: 4 where Embree runs 4-wide packets natively, else 1 (single rays).

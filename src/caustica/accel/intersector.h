@@ -1,6 +1,9 @@
 // intersector.h — the two ray-query objects integrators are templated on. Both offer
 //     bool intersect(const Ray&, Hit&) const;  // closest hit with t in (0, ray.tMax)
 //     bool occluded(const Ray&) const;         // any hit with t in (0, ray.tMax)
+// and, through intersectPacket / occludedPacket below, the same queries for a packet of rays (the
+// wavefront's trace stages). EmbreeIntersector answers a packet with Embree's packet queries; every
+// other intersector (and every one on a GPU, where a packet is one ray) with the single-ray loop.
 // BvhIntersector is shared kernel code (CPU and GPU); EmbreeIntersector (embree_accel.h) is host
 // only. embree_accel.h includes no Embree header, so this header compiles under nvcc.
 #pragma once
@@ -35,5 +38,48 @@ struct BvhIntersectorT {
 
 /// The default: full-stack traversal.
 using BvhIntersector = BvhIntersectorT<BvhTraversal::Stack>;
+
+/// Rays per packet query of intersector I: its `kPacketSize` where it has one (Embree: 16), else 1.
+template <class I>
+constexpr int rayPacketSize() {
+    if constexpr (requires { I::kPacketSize; })
+        return I::kPacketSize;
+    else
+        return 1;
+}
+
+/// The packet queries below as a loop of single-ray queries.
+template <class I>
+CA_HD_INLINE void intersectEach(const I& accel, int n, const Ray* const* rays, Hit* const* hits, uint32_t* found) {
+    for (int k = 0; k < n; ++k) {
+        Hit hit{};
+        found[k] = accel.intersect(*rays[k], hit);
+        *hits[k] = hit;
+    }
+}
+template <class I>
+CA_HD_INLINE void occludedEach(const I& accel, int n, const Ray* const* rays, uint32_t* occluded) {
+    for (int k = 0; k < n; ++k) occluded[k] = accel.occluded(*rays[k]);
+}
+
+/// Closest hits of rays[0..n) (n <= rayPacketSize<I>()): found[k] = 1 and hits[k] = the hit, or
+/// found[k] = 0 and hits[k] = Hit{} on a miss. The same hits as n single-ray `intersect` calls.
+template <class I>
+CA_HD_INLINE void intersectPacket(const I& accel, int n, const Ray* const* rays, Hit* const* hits,
+                                  uint32_t* found) {
+    if constexpr (rayPacketSize<I>() > 1)
+        accel.intersectPacket(n, rays, hits, found);
+    else
+        intersectEach(accel, n, rays, hits, found);
+}
+
+/// occluded[k] = whether rays[k] is blocked, for k < n (n <= rayPacketSize<I>()).
+template <class I>
+CA_HD_INLINE void occludedPacket(const I& accel, int n, const Ray* const* rays, uint32_t* occluded) {
+    if constexpr (rayPacketSize<I>() > 1)
+        accel.occludedPacket(n, rays, occluded);
+    else
+        occludedEach(accel, n, rays, occluded);
+}
 
 }  // namespace caustica

@@ -67,12 +67,14 @@ uint64_t traceChunk(Exec exec, const SceneView& scene, const Intersector& accel,
                     PixelSample* samples, const Paths& w, uint32_t* live, uint32_t* next, uint32_t* shadowQueue,
                     size_t prefetch) {
     uint64_t rays = 0;
+    constexpr size_t kPacket = size_t(rayPacketSize<Intersector>());
+    const auto packetCount = [](size_t n) { return (n + kPacket - 1) / kPacket; };
 
     // ---- Generate: camera rays; the sample's film position goes straight to its pass slot.
     launch(exec, "wavefront.generate", n, [=] CA_HD(size_t i) {
         const size_t slot = begin + i;
-        const CameraSample c =
-            cameraSample(scene.camera, slot / size_t(k), width, uint64_t(firstSample) + slot % size_t(k), seed);
+        const DivMod ps = divMod(slot, uint64_t(k));  // pixel, sample within the pass
+        const CameraSample c = cameraSample(scene.camera, ps.quot, width, uint64_t(firstSample) + ps.rem, seed);
         w.sampler[i] = c.sampler;
         samples[slot].pos = c.pos;
         live[i] = uint32_t(i);
@@ -83,12 +85,19 @@ uint64_t traceChunk(Exec exec, const SceneView& scene, const Intersector& accel,
 
     while (liveCount > 0) {
         const uint32_t* liveQ = live;
-        // ---- Extend: closest hit of every live path's ray (`alive` holds "found" until shade).
-        launch(exec, "wavefront.extend", liveCount, [=] CA_HD(size_t j) {
-            const uint32_t i = liveQ[j];
-            Hit hit{};
-            w.alive[j] = accel.intersect(w.state[i].ray, hit);
-            w.hit[i] = hit;
+        // ---- Extend: closest hit of every live path's ray (`alive` holds "found" until shade), a
+        // packet of queue entries per call (Embree's packet queries on a CPU; one ray on a GPU).
+        launch(exec, "wavefront.extend", packetCount(liveCount), [=] CA_HD(size_t p) {
+            const size_t j0 = p * kPacket;
+            const int m = int(min(kPacket, liveCount - j0));
+            const Ray* rays[kPacket];
+            Hit* hits[kPacket];
+            for (int k = 0; k < m; ++k) {
+                const uint32_t i = liveQ[j0 + k];
+                rays[k] = &w.state[i].ray;
+                hits[k] = &w.hit[i];
+            }
+            intersectPacket(accel, m, rays, hits, w.alive + j0);
         });
         rays += liveCount;
 
@@ -110,9 +119,17 @@ uint64_t traceChunk(Exec exec, const SceneView& scene, const Intersector& accel,
         // ---- Shadow: any-hit test of the NEE samples, over the queue of paths that made one.
         const size_t shadowCount = compactQueue(exec, w.hasShadow, live, liveCount, w.selected, shadowQueue);
         const uint32_t* shadowQ = shadowQueue;
-        launch(exec, "wavefront.shadow", shadowCount, [=] CA_HD(size_t q) {
-            const uint32_t i = shadowQ[q];
-            addShadowContribution(w.state[i], w.shadow[i], accel.occluded(w.shadow[i].ray));
+        launch(exec, "wavefront.shadow", packetCount(shadowCount), [=] CA_HD(size_t p) {
+            const size_t q0 = p * kPacket;
+            const int m = int(min(kPacket, shadowCount - q0));
+            const Ray* rays[kPacket];
+            for (int k = 0; k < m; ++k) rays[k] = &w.shadow[shadowQ[q0 + k]].ray;
+            uint32_t occluded[kPacket] = {};  // (set for k < m; zeroed to keep g++ -Wmaybe-uninitialized quiet)
+            occludedPacket(accel, m, rays, occluded);
+            for (int k = 0; k < m; ++k) {
+                const uint32_t i = shadowQ[q0 + k];
+                addShadowContribution(w.state[i], w.shadow[i], occluded[k] != 0);
+            }
         });
         rays += shadowCount;
 

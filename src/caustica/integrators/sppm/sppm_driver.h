@@ -358,25 +358,45 @@ private:
 
     /// Traces the photon pass into the store, again with a larger store when it overflowed (the
     /// photon streams are keyed by (photon, iteration), so the second pass stores the same photons).
+    /// With sort_photons the pass also writes each photon's Morton key and slot for the sort.
     uint64_t storePhotons(uint64_t iteration) {
-        if (store_.size() == 0) store_ = Buffer<SppmPhoton>(Exec::device(), size_t(2 * settings_.photonCount));
+        if (store_.size() == 0) resizeStore(size_t(2 * settings_.photonCount));
         for (;;) {
             sppm_detail::zeroCounters(Exec{}, 1, counter_.data());
             sppm_detail::zeroCounters(Exec{}, rayBlocks_.size(), rayBlocks_.data());
+            SppmPhotonStore store;
+            store.photons = store_.data();
+            store.capacity = uint64_t(store_.size());
+            store.counter = counter_.data();
+            if (settings_.sortPhotons) {
+                store.keys = photonKeys_.data();
+                store.order = photonOrder_.data();
+                store.lo = boxLo_;
+                store.invExtent = boxInvExtent_;
+            }
             const SceneView& view = scene_.view();
             scene_.visit(Exec{}, [&](const auto& intersector) {
                 sppm_detail::storePhotons(Exec{}, view, intersector, settings_.path, photonDepth(),
                                           settings_.roughnessThreshold, seed_, iteration, photonFirst_,
-                                          photonShare_, store_.data(), uint64_t(store_.size()), counter_.data(),
-                                          rayBlocks_.data());
+                                          photonShare_, store, rayBlocks_.data());
             });
             for (uint64_t r : rayBlocks_.toHost()) stats_.rays += r;
             const uint64_t stored = counter_.toHost()[0];
             if (stored <= store_.size()) return stored;
             if (stored >= (uint64_t(1) << 32)) throw Error("sppm: more than 2^32 photons stored in one iteration");
-            store_ = Buffer<SppmPhoton>(Exec::device(), size_t(stored + stored / 4));
+            resizeStore(size_t(stored + stored / 4));
             ++stats_.photonRetraces;
         }
+    }
+
+    /// The store and the arrays indexed like it (sort keys and order, sorted copy, positions).
+    void resizeStore(size_t n) {
+        const Device d = Exec::device();
+        store_ = Buffer<SppmPhoton>(d, n);
+        sorted_ = Buffer<SppmPhoton>(d, n);
+        photonPositions_ = Buffer<Vec3f>(d, n);
+        photonKeys_ = Buffer<uint32_t>(d, n);
+        photonOrder_ = Buffer<uint32_t>(d, n);
     }
 
     void gatherPass(uint64_t iteration, uint32_t count) {
@@ -388,17 +408,10 @@ private:
         stats_.photonSeconds += std::chrono::duration<double>(t1 - t0).count();
         if (stored == 0) return;
         const size_t n = size_t(stored);
-        if (sorted_.size() < store_.size()) {
-            sorted_ = Buffer<SppmPhoton>(Exec::device(), store_.size());
-            photonPositions_ = Buffer<Vec3f>(Exec::device(), store_.size());
-            photonKeys_ = Buffer<uint32_t>(Exec::device(), store_.size());
-            photonOrder_ = Buffer<uint32_t>(Exec::device(), store_.size());
-        }
         const uint32_t* order = nullptr;
         if (settings_.sortPhotons) {
-            // Photons of one cell next to each other in memory before the gather (seed 003).
-            sppm_detail::photonKeys(Exec{}, n, store_.data(), boxLo_, boxInvExtent_, photonKeys_.data(),
-                                    photonOrder_.data());
+            // Photons of one cell next to each other in memory before the gather (seed 003); the
+            // keys were written with the photons.
             radixSortPairs(Exec::device(), Span<uint32_t>(photonKeys_.data(), n),
                            Span<uint32_t>(photonOrder_.data(), n), 30);
             order = photonOrder_.data();

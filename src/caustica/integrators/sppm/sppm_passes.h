@@ -8,8 +8,10 @@
 #include "caustica/integrators/megakernel_pass.h"
 #include "caustica/integrators/sppm/sppm_kernel.h"
 #include "caustica/integrators/sppm/sppm_photon.h"
+#include "caustica/integrators/sppm/sppm_photon_store.h"
 #include "caustica/integrators/sppm/sppm_visible_bsdf.h"
 #include "caustica/parallel/launch.h"
+#include "caustica/parallel/prefetch.h"
 
 namespace caustica::sppm_detail {
 
@@ -122,40 +124,38 @@ void depositPhotons(Exec exec, const SceneView& view, const Intersector& accel, 
 }
 
 /// Direction "gather", first half: each photon path of [first, first + photons) appends its
-/// photons to `store` (at most `capacity`; `counter` counts them all, so the caller sees an
-/// overflow and traces again).
+/// photons to `store` (sppm_photon_store.h: in batches, with their sort keys when store.keys is
+/// set; store.counter counts them all, so the caller sees an overflow and traces again).
 template <class Exec, class Intersector>
 void storePhotons(Exec exec, const SceneView& view, const Intersector& accel, PathSettings path, uint32_t maxDepth,
                   Float specularBelow, uint64_t seed, uint64_t iteration, uint64_t first, uint64_t photons,
-                  SppmPhoton* store, uint64_t capacity, uint64_t* counter, uint64_t* rayBlocks) {
+                  SppmPhotonStore store, uint64_t* rayBlocks) {
     launch(
         exec, "sppm.store", size_t(photons),
         [=] CA_HD(size_t i) {
+            SppmPhotonBatch batch(store);
             photonPath(view, accel, size_t(first) + i, iteration, seed, path, maxDepth, specularBelow, rayBlocks,
                        [&](const SurfaceInteraction& si, Vec3f wo, const Spectrum& flux, uint32_t k) {
-                           const uint64_t slot = sppmAtomicFetchAdd(counter, 1);
-                           if (slot < capacity) store[slot] = SppmPhoton{si.p, wo, si.ng, flux, k};
+                           batch.add(SppmPhoton{si.p, wo, si.ng, flux, k});
                        });
+            batch.flush();
         },
         16);
 }
 
-/// Morton keys of the stored photons and their positions (the keys sort photons by cell).
-template <class Exec>
-void photonKeys(Exec exec, size_t count, const SppmPhoton* store, Vec3f lo, Vec3f invExtent, uint32_t* keys,
-                uint32_t* order) {
-    launch(exec, "sppm.photon-keys", count, [=] CA_HD(size_t i) {
-        keys[i] = sppmMorton(store[i].p, lo, invExtent);
-        order[i] = uint32_t(i);
-    });
-}
-
 /// Copies the photons into `order` (sorted: order = the sort's permutation; else identity) and
-/// writes their positions.
+/// writes their positions. The permutation reads the store out of order, so a CPU starts loading
+/// the record kSppmArrangePrefetch items ahead (both its cache lines; nothing on a GPU).
+inline constexpr size_t kSppmArrangePrefetch = 16;
 template <class Exec>
 void arrangePhotons(Exec exec, size_t count, const SppmPhoton* from, const uint32_t* order, SppmPhoton* to,
                     Vec3f* positions) {
     launch(exec, "sppm.photon-arrange", count, [=] CA_HD(size_t i) {
+        if (order && i + kSppmArrangePrefetch < count) {
+            const SppmPhoton* ahead = from + order[i + kSppmArrangePrefetch];
+            prefetchRead(ahead);
+            prefetchRead(reinterpret_cast<const char*>(ahead + 1) - 1);
+        }
         const SppmPhoton ph = from[order ? order[i] : i];
         to[i] = ph;
         positions[i] = ph.p;

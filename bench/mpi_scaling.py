@@ -6,7 +6,8 @@ Every case is one `mpirun -n N caustica render` (N = 1 included, so the launcher
 the same in every row) with --stats-json; the figures come from rank 0's statistics:
 `run_seconds` (rendering only: scene load and acceleration build excluded), the speedup
 against the 1-rank row of the same integrator, and `bytes_sent_per_iteration` (rank 0's bytes
-handed to MPI per step / iteration, where the integrator reports it). `cpu_seconds` is the CPU
+handed to MPI per step / iteration, where the integrator reports it) and `collectives` (rank 0's
+meetings of all ranks in the render: each waits for the slowest rank). `cpu_seconds` is the CPU
 time of mpirun and all ranks (start, load and waiting included): on a machine shared with other
 work it shows whether the ranks split the work without adding any, where wall times cannot. Ranks beyond the cores are
 oversubscribed (--oversubscribe): such rows measure overhead, not scaling.
@@ -117,7 +118,8 @@ def main():
                        'cpu_seconds': round(min(c for _, _, c in runs), 3),
                        'samples': stats['samples'],
                        'bytes_sent_per_iteration': stats.get('bytes_sent_per_iteration', 0),
-                       'bytes_sent': stats.get('bytes_sent', 0)}
+                       'bytes_sent': stats.get('bytes_sent', 0),
+                       'collectives': stats.get('collectives', 0)}
                 if a.ceiling:
                     ceiling = ''
                     if 1 < n and n * a.threads <= cores:

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <sys/wait.h>
 
@@ -40,13 +41,15 @@ inline CliResult runShell(const std::string& script) {
     return runCliCommand("CAUSTICA=" + std::string(CAUSTICA_BINARY) + " sh -c '" + quoted + "' 2>&1");
 }
 
-/// A fresh temporary directory per test, named after the test.
+/// A fresh temporary directory per test, named after the test and the process: two runs of the
+/// same test at once (two checkouts on one machine) must not share or delete each other's files.
 class CliFixture : public ::testing::Test {
 protected:
     void SetUp() override {
         dir = std::filesystem::temp_directory_path() /
               ("caustica_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_suite()->name()) +
-               "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+               "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name() + "_" +
+               std::to_string(::getpid()));
         std::filesystem::remove_all(dir);
         std::filesystem::create_directories(dir);
     }

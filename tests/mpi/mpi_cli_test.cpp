@@ -117,12 +117,20 @@ TEST_F(MpiCli, ASceneOneRankCannotReadEndsEveryRankWithItsMessage) {
 TEST_F(MpiCli, CtrlCSavesACheckpointThatResumesWithAsManyRanksOnly) {
     const std::string render = kRender + kScene + kSmall + "-o " + path("cut.pfm");
     // SIGINT to mpirun, which forwards it to the ranks: they finish the step and rank 0 saves.
-    const CliResult cut = runShell(kMpirun + " -n 2 " + render + " --spp 1000000 > " + path("cut.log") +
-                                   " 2>&1 & pid=$!; sleep 2; kill -INT $pid; wait $pid; cat " + path("cut.log"));
+    // Sent only once every rank renders (before, a rank still starting has no handler and dies of
+    // it, and mpirun with it): the first periodic checkpoint is the sign, since its save is
+    // collective and comes after every rank installed its handler. No fixed sleep: a loaded
+    // machine may take seconds to start the ranks (timeout 60 ends mpirun if none ever comes).
+    const std::string ckpt = path("cut.pfm.ckpt");
+    const CliResult cut = runShell(kMpirun + " -n 2 " + render + " --spp 1000000 --checkpoint-every 0.2 > " +
+                                   path("cut.log") + " 2>&1 & pid=$!; while [ ! -e " + ckpt +
+                                   " ] && kill -0 $pid 2>/dev/null; do sleep 0.05; done; kill -INT $pid; wait $pid; cat " +
+                                   path("cut.log"));
     std::smatch m;
     ASSERT_TRUE(std::regex_search(cut.output, m, std::regex("interrupted at ([0-9]+) spp"))) << cut.output;
-    ASSERT_TRUE(std::filesystem::exists(path("cut.pfm.ckpt"))) << cut.output;
-    const int total = std::stoi(m[1]) + 3;
+    ASSERT_TRUE(std::filesystem::exists(ckpt)) << cut.output;
+    const std::string interruptedAt = m[1];
+    const int total = std::stoi(interruptedAt) + 3;
 
     const CliResult three = runCliCommand(kMpirun + " -n 3 " + render + " --spp " + std::to_string(total) +
                                           " --resume 2>&1");
@@ -135,6 +143,9 @@ TEST_F(MpiCli, CtrlCSavesACheckpointThatResumesWithAsManyRanksOnly) {
     const CliResult two = runCliCommand(kMpirun + " -n 2 " + render + " --spp " + std::to_string(total) +
                                         " --resume 2>&1");
     ASSERT_EQ(two.exitCode, 0) << two.output;
+    // It resumed from the checkpoint Ctrl-C wrote, not from an earlier periodic one.
+    EXPECT_NE(two.output.find("resuming from " + ckpt + " at " + interruptedAt + " spp"), std::string::npos)
+        << two.output;
     const CliResult alone = runCli("render " + kScene + kSmall + "--spp " + std::to_string(total) + " -o " + path("alone.pfm"));
     ASSERT_EQ(alone.exitCode, 0) << alone.output;
     EXPECT_TRUE(readFile(path("cut.pfm")) == readFile(path("alone.pfm")));

@@ -4,7 +4,10 @@
 // process, and the image of 2 and 3 ranks equals one process's up to the order of the splat and
 // b sums (1e-5 relative per pixel); develop() is collective and gives every rank the image; a
 // checkpoint saved on 2 ranks and loaded on 2 continues as the uninterrupted render to the bit
-// (sort splats, which are deterministic); the same run twice gives the same bits.
+// (sort splats, which are deterministic); the same run twice gives the same bits. The iteration
+// counters are summed over the ranks only where read (develop, save, statistics): b and the
+// acceptance do not depend on where the ranks meet, and a step over ranks runs many iterations
+// but ends an spp budget after the iteration one process would.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -42,6 +45,10 @@ std::string statOf(const IntegratorSession& session, const std::string& key) {
     return "";
 }
 
+/// A budget below one iteration's mutations: the step runs exactly one iteration (a step over
+/// ranks runs mltIterationsPerRankStep() iterations when it has no budget).
+constexpr double kOneIteration = 1e-9;
+
 struct RankResult {
     std::vector<Image> images;  // every rank's develop()
     std::string b;              // mlt_b after the bootstrap (rank 0)
@@ -54,7 +61,7 @@ RankResult renderOnRanks(const RankRig& rig, int ranks, int iterations) {
     rig.run(ranks, [&](IntegratorSession& session, Communicator& comm) {
         session.step(0);
         if (comm.isRoot()) result.b = statOf(session, "mlt_b");
-        for (int i = 0; i < iterations; ++i) session.step(0);
+        for (int i = 0; i < iterations; ++i) session.step(kOneIteration);
         result.images[size_t(comm.rank())] = session.develop();
     });
     return result;
@@ -107,7 +114,8 @@ TEST(MltRanks, CheckpointOfTwoRanksContinuesAsTheUninterruptedRender) {
     const RankResult whole = renderOnRanks(rig, 2, 6);
     std::string file;
     rig.run(2, [&](IntegratorSession& session, Communicator& comm) {
-        for (int i = 0; i < 4; ++i) session.step(0);  // bootstrap + 3 iterations: a splat batch pending
+        session.step(0);  // the bootstrap
+        for (int i = 0; i < 3; ++i) session.step(kOneIteration);  // 3 iterations: a splat batch pending
         const std::string mine = saveOnRanks(session, comm);
         if (comm.isRoot()) file = mine;
     });
@@ -115,7 +123,7 @@ TEST(MltRanks, CheckpointOfTwoRanksContinuesAsTheUninterruptedRender) {
     std::vector<Image> resumed(2);
     rig.run(2, [&](IntegratorSession& session, Communicator& comm) {
         loadOnRanks(session, file);
-        for (int i = 0; i < 3; ++i) session.step(0);
+        for (int i = 0; i < 3; ++i) session.step(kOneIteration);
         resumed[size_t(comm.rank())] = session.develop();
     });
     for (const Image& image : resumed) EXPECT_TRUE(image.rgb == whole.images[0].rgb) << "the resumed image differs";
@@ -125,6 +133,44 @@ TEST(MltRanks, TheSameRunTwiceGivesTheSameBits) {
     const Scene scene = causticScene();
     const RankRig rig(scene, mltRequest("32"));
     EXPECT_TRUE(renderOnRanks(rig, 2, 3).images[0].rgb == renderOnRanks(rig, 2, 3).images[0].rgb);
+}
+
+TEST(MltRanks, CountersDoNotDependOnWhereTheRanksMeet) {
+    const Scene scene = causticScene();
+    const RankRig rig(scene, mltRequest("48"));
+    // Accepted moves and b after 6 iterations: summed after every iteration, or once at the end.
+    auto countersOn = [&](int ranks, bool meetEveryIteration) {
+        std::vector<std::string> result(2);
+        rig.run(ranks, [&](IntegratorSession& session, Communicator& comm) {
+            session.step(0);
+            for (int i = 0; i < 6; ++i) {
+                session.step(kOneIteration);
+                if (meetEveryIteration) session.gatherStatistics();
+            }
+            session.gatherStatistics();
+            if (comm.isRoot()) result = {statOf(session, "mlt_accepted"), statOf(session, "mlt_b")};
+        });
+        return result;
+    };
+    const std::vector<std::string> everyIteration = countersOn(2, true), atTheEnd = countersOn(2, false);
+    EXPECT_EQ(atTheEnd, everyIteration);  // to the bit: the same additions in the same order
+    const std::vector<std::string> one = countersOn(1, false);
+    EXPECT_EQ(atTheEnd[0], one[0]);  // the chains move as in one process
+    ASSERT_FALSE(atTheEnd[1].empty());
+    EXPECT_NEAR(std::stod(atTheEnd[1]), std::stod(one[1]), 1e-12 * std::stod(one[1]));
+}
+
+TEST(MltRanks, AStepOverRanksRunsManyIterationsAndEndsTheBudgetAsOneProcess) {
+    const Scene scene = causticScene();
+    const RankRig rig(scene, mltRequest("64"));  // 64 chains on 16 x 12 pixels: 1/3 mutation per pixel each
+    rig.run(2, [&](IntegratorSession& session, Communicator&) {
+        session.step(0);
+        session.step(0);  // no budget: 2^16 proposals in all
+        EXPECT_EQ(statOf(session, "mlt_iterations"), "1024");
+        session.step(0.5);  // half a mutation per pixel left: 2 iterations reach it, as in one process
+        EXPECT_EQ(statOf(session, "mlt_iterations"), "1026");
+        EXPECT_NEAR(session.samplesPerPixel(), 1026.0 / 3.0, 1e-9);
+    });
 }
 
 TEST(MltRanks, FewerChainsThanRanksAreRefused) {
@@ -143,13 +189,16 @@ TEST(MltRanks, BytesSentAreReported) {
     const RankRig rig(scene, mltRequest("16"));
     rig.run(2, [&](IntegratorSession& session, Communicator&) {
         session.step(0);
-        session.step(0);
+        session.step(kOneIteration);
+        session.step(kOneIteration);
         session.develop();
-        // InProcessGroup counts the bytes a rank contributes: the counters (3 doubles), its half of
-        // the 4096 bootstrap samples (luminance and pixel, 4 bytes each), its film (6 doubles a pixel).
-        EXPECT_EQ(std::stod(statOf(session, "bytes_sent_per_iteration")), 24);
+        // InProcessGroup counts the bytes a rank contributes: nothing in an iteration, its half of
+        // the 4096 bootstrap samples (luminance and pixel, 4 bytes each); a develop sends its film
+        // (6 doubles a pixel) and the counters of the 2 iterations since the last meeting (accepted,
+        // large steps, one importance sum per iteration: 4 doubles).
+        EXPECT_EQ(std::stod(statOf(session, "bytes_sent_per_iteration")), 0);
         EXPECT_EQ(std::stoull(statOf(session, "mlt_bootstrap_bytes_sent")), 2048u * 8u);
-        EXPECT_EQ(std::stoull(statOf(session, "mlt_develop_bytes_sent")), 16u * 12u * 6u * 8u);
+        EXPECT_EQ(std::stoull(statOf(session, "mlt_develop_bytes_sent")), 16u * 12u * 6u * 8u + 4u * 8u);
     });
 }
 

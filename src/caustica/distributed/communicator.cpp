@@ -17,6 +17,7 @@ public:
     void broadcast(std::vector<uint8_t>&, int) override {}
     void barrier() override {}
     uint64_t bytesSent() const override { return 0; }
+    uint64_t collectives() const override { return 0; }
 };
 
 }  // namespace

@@ -38,6 +38,9 @@ public:
 
     /// Bytes this rank has sent so far (0 for a single process).
     virtual uint64_t bytesSent() const = 0;
+    /// Collective operations this rank has taken part in so far (each a meeting of all ranks:
+    /// every rank waits for the slowest); 0 for a single process.
+    virtual uint64_t collectives() const = 0;
 
     /// Whether any rank passes true.
     bool any(bool flag) { return max(flag ? 1.0 : 0.0) > 0; }

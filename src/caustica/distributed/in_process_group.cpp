@@ -70,6 +70,7 @@ public:
     }
     void barrier() override { exchange({}, [] {}); }
     uint64_t bytesSent() const override { return sent_; }
+    uint64_t collectives() const override { return collectives_; }
 
 private:
     template <class T>
@@ -97,6 +98,7 @@ private:
     void exchange(std::span<const uint8_t> mine, Read&& read) {
         state_.slots[rank_].assign(mine.begin(), mine.end());
         sent_ += mine.size();
+        ++collectives_;
         state_.wait();
         read();
         state_.wait();
@@ -104,7 +106,7 @@ private:
 
     InProcessGroup::State& state_;
     int rank_;
-    uint64_t sent_ = 0;
+    uint64_t sent_ = 0, collectives_ = 0;
 };
 
 }  // namespace

@@ -52,12 +52,14 @@ public:
     void sum(std::span<uint64_t> v) override { sumInRankOrder(v); }
     double max(double value) override {
         double result = value;  // the maximum does not depend on the order
+        ++collectives_;
         check(MPI_Allreduce(&value, &result, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD), "allreduce");
         sent_ += sizeof(double);
         return result;
     }
     std::vector<std::vector<uint8_t>> allGather(std::span<const uint8_t> bytes) override {
         int mine = count(bytes.size(), "allgather");
+        ++collectives_;
         std::vector<int> sizes(static_cast<size_t>(size_), 0), offsets(static_cast<size_t>(size_), 0);
         check(MPI_Allgather(&mine, 1, MPI_INT, sizes.data(), 1, MPI_INT, MPI_COMM_WORLD), "allgather");
         size_t total = 0;
@@ -79,18 +81,24 @@ public:
     }
     void broadcast(std::vector<uint8_t>& bytes, int root) override {
         uint64_t n = bytes.size();
+        ++collectives_;
         check(MPI_Bcast(&n, 1, MPI_UINT64_T, root, MPI_COMM_WORLD), "broadcast");
         bytes.resize(size_t(n));
         check(MPI_Bcast(bytes.data(), count(size_t(n), "broadcast"), MPI_BYTE, root, MPI_COMM_WORLD), "broadcast");
         if (rank_ == root) sent_ += (sizeof n + n) * uint64_t(size_ - 1);
     }
-    void barrier() override { check(MPI_Barrier(MPI_COMM_WORLD), "barrier"); }
+    void barrier() override {
+        ++collectives_;
+        check(MPI_Barrier(MPI_COMM_WORLD), "barrier");
+    }
     uint64_t bytesSent() const override { return sent_; }
+    uint64_t collectives() const override { return collectives_; }
 
 private:
     template <class T>
     void sumInRankOrder(std::span<T> v) {
         const int n = count(v.size(), "sum");
+        ++collectives_;
         std::vector<T> all(rank_ == 0 ? v.size() * size_t(size_) : 0);
         check(MPI_Gather(v.data(), n, datatype<T>(), all.data(), n, datatype<T>(), 0, MPI_COMM_WORLD), "gather");
         if (rank_ == 0) {
@@ -107,7 +115,7 @@ private:
     }
 
     int rank_ = 0, size_ = 1;
-    uint64_t sent_ = 0;
+    uint64_t sent_ = 0, collectives_ = 0;  // an operation of several MPI calls counts once
 };
 
 }  // namespace

@@ -50,6 +50,10 @@ public:
     virtual void load(std::istream& in) = 0;
     /// One line for the start of a render ("device: cpu; path-mode megakernel").
     virtual std::string description() const = 0;
+    /// Collective over ranks (Renderer::stats calls it on every rank before the statistics are
+    /// read): brings what printSummary() and statsJson() show up to the whole render's where a
+    /// session sums it over the ranks only on demand (mlt's counters).
+    virtual void gatherStatistics() {}
     /// Further summary lines and statistics JSON entries (key, JSON value) of the integrator.
     virtual void printSummary(std::FILE* out) const { (void)out; }
     virtual std::vector<std::pair<std::string, std::string>> statsJson() const { return {}; }

@@ -4,16 +4,19 @@
 //
 // Over ranks (SessionContext::comm; docs/MPI.md): the bootstrap samples are split by
 // global index and gathered, so b and the chain starts are one process's; each rank steps the
-// chains of its share of the global chain indices (their streams keyed by them); the iteration
-// counters are summed every step (b and the counters are the whole render's on every rank);
-// develop() is COLLECTIVE (the splat films are summed over the ranks); save() gathers every
-// rank's chains to rank 0, which writes the whole render.
+// chains of its share of the global chain indices (their streams keyed by them); a step runs
+// several iterations (mltIterationsPerRankStep), and the iteration counters are summed over the
+// ranks only where they are read (develop, save, statistics: b and the counters are then the
+// whole render's on every rank, to the bit as if summed every iteration); develop() is
+// COLLECTIVE (the splat films are summed over the ranks); save() gathers every rank's chains to
+// rank 0, which writes the whole render.
 #include <cstdio>
 #include <memory>
 #include <string>
 
 #include "caustica/integrators/mlt/mlt_driver.h"
 #include "caustica/integrators/mlt/mlt_integrator.h"
+#include "caustica/integrators/mlt/mlt_ranks.h"
 #include "caustica/integrators/path/gpu_memory.h"
 #include "caustica/integrators/mlt/mlt_settings.h"
 #include "caustica/integrators/path/path_settings.h"
@@ -62,7 +65,10 @@ public:
         }));
     }
 
-    void step(double) override {
+    /// The bootstrap, or one iteration (one process) or mltIterationsPerRankStep() iterations
+    /// (several ranks; fewer where `samplesLeft` > 0 runs out: the budget ends after the same
+    /// iteration as in one process).
+    void step(double samplesLeft) override {
         const uint64_t before = comm_.bytesSent();
         if (!mlt_->started()) {
             mlt_->bootstrap();
@@ -70,11 +76,21 @@ public:
             return;
         }
         if (recordEstimates_ && since_.sums.empty()) mlt_->developSince(since_);  // the sums before
-        mlt_->iterate();
+        const uint64_t most = comm_.size() > 1 ? mltIterationsPerRankStep(mlt_->settings()) : 1;
+        // Renderer::finished() stops at samplesPerPixel() >= its target; stopping a step a little
+        // early (the tolerance covers the rounding of target - before + before) only adds a step.
+        const double target = mlt_->mutationsPerPixel() + samplesLeft;
+        for (uint64_t i = 0; i < most; ++i) {
+            if (i > 0 && samplesLeft > 0 && mlt_->mutationsPerPixel() >= target * (1 - 1e-9)) break;
+            mlt_->iterate();
+            ++iterationsThisRun_;
+        }
         if (recordEstimates_) estimate_ = mlt_->developSince(since_);
         iterated_ = true;
-        ++iterationsThisRun_;
         iterationBytes_ += comm_.bytesSent() - before;
+    }
+    void gatherStatistics() override {
+        if (mlt_->started()) mlt_->gatherCounters();
     }
     double samplesPerPixel() const override { return mlt_->mutationsPerPixel(); }
     bool hasImage() const override { return iterated_ || mlt_->stats().iterations > 0; }

@@ -150,6 +150,7 @@ void writeRenderStatsJson(const std::string& path, const Renderer& r, bool cance
     const double run = r.runSeconds();
     const int ranks = r.comm().size();
     const std::vector<RankStats> perRank = ranks > 1 ? r.rankStats() : std::vector<RankStats>{};
+    const uint64_t collectives = r.comm().collectives();  // rank 0's meetings, these two included
     if (!r.comm().isRoot()) return;  // collective over ranks: rank 0 writes
     writeFileAtomically(path, [&](std::ostream& f) {
         f << "{\n"
@@ -169,7 +170,7 @@ void writeRenderStatsJson(const std::string& path, const Renderer& r, bool cance
           << "  \"invalid_samples\": " << s.invalidSamples << ",\n"
           << "  \"cancelled\": " << (cancelled ? "true" : "false");
         if (ranks > 1) {  // the totals above are summed over the ranks; each rank's share:
-            f << ",\n  \"ranks\": " << ranks << ",\n  \"per_rank\": [";
+            f << ",\n  \"ranks\": " << ranks << ",\n  \"collectives\": " << collectives << ",\n  \"per_rank\": [";
             for (size_t i = 0; i < perRank.size(); ++i)
                 f << (i ? ", " : "") << "{\"rank\": " << i << ", \"samples\": " << perRank[i].samples
                   << ", \"rays\": " << perRank[i].rays << ", \"seconds\": " << perRank[i].seconds << "}";

@@ -186,6 +186,7 @@ Image Renderer::develop() const { return session_->develop(); }
 AovImage Renderer::developAovs() const { return aov_ ? aov_->develop() : AovImage{}; }
 
 RenderStats Renderer::stats() const {
+    if (comm_->size() > 1) session_->gatherStatistics();  // collective, as the sum below
     const SessionCounters c = session_->counters();
     RenderStats s;
     s.seconds = priorSeconds_ + runSeconds_;

@@ -227,6 +227,7 @@ public:
                              film_.eyeWidth());
         setPixelWeight(plan.pixelWeight);
         adoptMltBootstrap(plan, m, b_, stats);
+        pending_.clear();
 
         // This rank's chains start where one process's chains of the same global index do.
         const Buffer<uint64_t> startIndex(
@@ -247,7 +248,7 @@ public:
         p.iteration = uint32_t(stats.iterations);
         p.b = float(b_.b0);
         const MltChainView<Store> v = buf_.view(store_, stats.iterations);
-        return mltTimedIteration(
+        const uint64_t rays = mltTimedIteration(
             stats, b_, settings, buf_.batch, [](MltClock::time_point t) { return secondsSince(t); },
             [&] {
                 scene_.visit(Exec{}, [&](const auto& intersector) {
@@ -256,12 +257,22 @@ public:
             },
             [&] {
                 advanceKernel(Exec{}, v, p);
-                // Where they live (each reduction waits for the advance), then over the ranks.
+                // Where they live (each reduction waits for the advance). Over ranks they wait
+                // in pending_ (summed over the ranks only where read: gatherCounters); the
+                // iteration then adds only its rays to stats.
                 MltIterationCounts c = buf_.reduceCounters(device());
-                if (comm_.size() > 1) sumMltIterationCounts(comm_, c);
-                return c;
+                if (comm_.size() == 1) return c;
+                pending_.add(c);
+                return MltIterationCounts{c.rays, 0, 0, 0};
             },
             [&] { splat(buf_.batch, buf_.image.data()); }, [&] { sortChains(); });
+        // Bounds the pending sums; every rank reaches the same count after the same iteration.
+        if (pending_.iterations() >= kMltMostPendingIterations) gatherCounters();
+        return rays;
+    }
+
+    void gatherCounters() override {
+        if (comm_.size() > 1) pending_.gather(comm_, stats, b_);
     }
 
     /// Collective over the ranks: their splat sums are summed (in rank order) into the image.
@@ -270,6 +281,7 @@ public:
         return film_.develop(sums.data(), b_, weight);
     }
     std::vector<double> splatSums() override {
+        gatherCounters();  // collective like the film sum below; develop's b is the whole render's
         const uint64_t pending = buf_.pendingIterations(stats.iterations);
         std::vector<double> sums = buf_.image.toHost();
         if (pending > 0) {
@@ -286,7 +298,8 @@ public:
     // (mlt_checkpoint.h), so a checkpoint resumes on either device.
     // Over ranks (collective): every rank's part goes to rank 0, which writes the whole render
     // (mlt_rank_checkpoint.h); the other ranks write nothing. A resume reads the whole render
-    // on every rank, which keeps its own part.
+    // on every rank, which keeps its own part. The caller gathers the counters first
+    // (MltRenderer::save), so that the file holds the whole render's b and counters.
     void save(std::ostream& out) const override {
         MltCheckpoint c = mltCheckpointOf(stats, b_, buf_);
         c.pixelWeight = pixelWeight_.toHost();
@@ -319,6 +332,7 @@ public:
             c = mltCheckpointPart(c, chainWidths(), MltShare{chainFirst(), localChains_}, settings.chains,
                                   comm_.rank(), comm_.size());
         restoreMltCheckpoint(c, stats, b_, buf_);
+        pending_.clear();
         if constexpr (kCompact) {
             fine_.copyFromHost(fromChainMajor(c.fine, slots_[0], 3));
             coarse_.copyFromHost(fromChainMajor(c.coarse, slots_[1], 1));
@@ -458,6 +472,7 @@ private:
     Buffer<uint32_t> order_;
     Buffer<uint64_t> mortonKeys_;
     MltNormalisation b_;
+    MltPendingCounts pending_;  // over ranks: this rank's counters since the last gatherCounters()
 };
 
 }  // namespace caustica

@@ -49,6 +49,10 @@ struct MltRenderer::Impl {
     virtual Image developSums(const std::vector<double>& sums, double weight) const = 0;
     /// Total chain splat weight of the iterations so far (develop()'s normaliser).
     double splatWeight() const { return double(settings.chains) * settings.proposals * double(stats.iterations); }
+    /// Collective over ranks: sums the counters every rank kept since the last call into stats
+    /// and b (mlt_ranks.h MltPendingCounts); nothing in one process. splatSums() (so develop)
+    /// calls it; MltRenderer calls it before save() and for the statistics.
+    virtual void gatherCounters() = 0;
     /// Resumable checkpoints (mlt_checkpoint.h): the whole state, written and restored.
     virtual void save(std::ostream& out) const = 0;
     virtual void load(std::istream& in) = 0;
@@ -56,8 +60,8 @@ struct MltRenderer::Impl {
     /// This rank's chains: global indices [chainFirst(), chainFirst() + localChains()).
     uint32_t chainFirst() const { return params_.chainOffset; }
     uint32_t localChains() const { return localChains_; }
-    /// stats: counters and b of the whole render on every rank (summed over the ranks each
-    /// iteration), except rays (this rank's) and the timings (this rank's).
+    /// stats: counters and b of the whole render on every rank as of the last gatherCounters()
+    /// (iterations and proposals: always), except rays (this rank's) and the timings (this rank's).
     MltStats stats;
     MltSettings settings;  // chains: the total over the ranks
     bool started = false;  // bootstrapped, or loaded from a checkpoint

@@ -203,7 +203,11 @@ Image MltRenderer::developSince(SplatState& since) const {
 const MltStats& MltRenderer::stats() const { return impl_->stats; }
 const MltSettings& MltRenderer::settings() const { return impl_->settings; }
 bool MltRenderer::started() const { return impl_->started; }
-void MltRenderer::save(std::ostream& out) const { impl_->save(out); }
+void MltRenderer::save(std::ostream& out) const {
+    impl_->gatherCounters();  // the file holds the whole render's counters and b
+    impl_->save(out);
+}
+void MltRenderer::gatherCounters() { impl_->gatherCounters(); }
 void MltRenderer::load(std::istream& in) { impl_->load(in); }
 uint32_t MltRenderer::localChains() const { return impl_->localChains(); }
 double MltRenderer::mutationsPerPixel() const {

@@ -126,6 +126,9 @@ public:
     /// leaves the renderer untouched). Every driver (CPU and GPU) has them.
     void save(std::ostream& out) const;
     void load(std::istream& in);
+    /// Over ranks, collective: brings stats() up to the whole render's (the ranks sum their
+    /// counters only where they are read: develop, save and here). Nothing in one process.
+    void gatherCounters();
     /// Proposals per pixel so far (the analogue of samples per pixel), of the whole render.
     double mutationsPerPixel() const;
     /// The chains this rank steps (all of settings().chains in one process; makeMltDriver's

@@ -1,5 +1,6 @@
 #include "caustica/integrators/mlt/mlt_ranks.h"
 
+#include <algorithm>
 #include <cstring>
 #include <span>
 
@@ -30,13 +31,37 @@ void gatherMltBootstrap(Communicator& comm, std::vector<float>& importance, std:
     }
 }
 
-void sumMltIterationCounts(Communicator& comm, MltIterationCounts& counts) {
-    // Counts below 2^53 are exact in doubles.
-    double v[3] = {double(counts.accepted), double(counts.largeSteps), counts.largeStepSum};
+void MltPendingCounts::add(const MltIterationCounts& counts) {
+    accepted_ += counts.accepted;
+    largeSteps_ += counts.largeSteps;
+    largeStepSums_.push_back(counts.largeStepSum);
+}
+
+void MltPendingCounts::gather(Communicator& comm, MltStats& stats, MltNormalisation& b) {
+    // Counts below 2^53 are exact in doubles; the per-iteration sums are summed element-wise in
+    // rank order, as each iteration's sum over the ranks was.
+    std::vector<double> v(2 + largeStepSums_.size());
+    v[0] = double(accepted_);
+    v[1] = double(largeSteps_);
+    std::copy(largeStepSums_.begin(), largeStepSums_.end(), v.begin() + 2);
     comm.sum(std::span<double>(v));
-    counts.accepted = uint64_t(v[0]);
-    counts.largeSteps = uint64_t(v[1]);
-    counts.largeStepSum = v[2];
+    stats.accepted += uint64_t(v[0]);
+    stats.largeSteps += uint64_t(v[1]);
+    // b.count only ever adds integers (exact), so the total at once equals the per-iteration adds.
+    for (size_t t = 2; t < v.size(); ++t) b.add(v[t], 0);
+    b.count += v[1];
+    stats.b = b.b();
+    clear();
+}
+
+void MltPendingCounts::clear() {
+    accepted_ = largeSteps_ = 0;
+    largeStepSums_.clear();
+}
+
+uint64_t mltIterationsPerRankStep(const MltSettings& settings) {
+    const uint64_t perIteration = std::max<uint64_t>(1, uint64_t(settings.chains) * settings.proposals);
+    return std::max<uint64_t>(1, (kMltRankStepProposals + perIteration - 1) / perIteration);
 }
 
 }  // namespace caustica

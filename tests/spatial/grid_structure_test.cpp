@@ -80,7 +80,28 @@ TEST(UniformGridTest, CellSizeFromRadiusAndBoundedCellCount) {
     // A radius far below the spacing of the points: the grid grows its cells, not its memory.
     const DevicePoints tiny(randomPoints(1000, 45), 1e-6f);
     const UniformGrid small = UniformGrid::build(CpuExec{}, tiny.set());
-    EXPECT_LE(small.memoryBytes(), (1000 + 4096 + 1) * sizeof(uint32_t));
+    EXPECT_LE(small.memoryBytes(), (1000 + 4096 + 1) * sizeof(uint32_t) + 1000 * sizeof(Vec3f));
+    // Cells of one largest radius on request (SPPM's photon grid).
+    const DevicePoints wide(randomPoints(1000, 44), 0.1f);
+    EXPECT_EQ(UniformGrid::build(CpuExec{}, wide.set()).cellSize(), 0.2f);
+    const UniformGrid narrow = UniformGrid::build(CpuExec{}, wide.set(), 1);
+    EXPECT_EQ(narrow.cellSize(), 0.1f);
+    EXPECT_EQ(narrow.resolution().x, 10);
+}
+
+/// The positions in cell order are the points' positions, permuted as the cells' order.
+TEST(UniformGridTest, CellPositionsFollowTheCellOrder) {
+    const auto points = clusteredPoints(3000, 47, Vec3f(0.5f, 0.5f, 0.5f), 0.2f);
+    const DevicePoints dev(points, 0.02f);
+    const UniformGrid grid = UniformGrid::build(CpuExec{}, dev.set(), 1);
+    const auto view = grid.view();
+    ASSERT_EQ(view.cellPositions.size(), points.size());
+    for (size_t k = 0; k < points.size(); ++k) {
+        const Vec3f p = points[view.cells.order[k]], q = view.cellPositions[k];
+        ASSERT_TRUE(p.x == q.x && p.y == q.y && p.z == q.z) << k;
+    }
+    EXPECT_EQ(grid.memoryBytes(), (points.size() + view.cells.cellStart.size()) * sizeof(uint32_t) +
+                                      points.size() * sizeof(Vec3f));
 }
 
 /// Every cell holds exactly the points whose cell it is, ascending (a stable counting sort).

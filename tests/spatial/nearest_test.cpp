@@ -44,7 +44,7 @@ protected:
     }
 };
 
-using Structures = ::testing::Types<BruteForce, UniformGrid, HashGrid, KdTree, MultiHash, MultiHashSmallLeaves, MultiHashCoarserCells>;
+using Structures = ::testing::Types<BruteForce, UniformGrid, UniformGridNarrowCells, HashGrid, KdTree, MultiHash, MultiHashSmallLeaves, MultiHashCoarserCells>;
 TYPED_TEST_SUITE(NearestTest, Structures);
 
 const std::vector<uint32_t> kKs{1, 2, 7, 32, 64};

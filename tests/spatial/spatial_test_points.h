@@ -208,6 +208,16 @@ struct MultiHashCoarserCells : MultiHash {
     }
 };
 
+/// The uniform grid with cells of one largest radius, narrower than by default (SPPM's photon
+/// grid: sppm_driver.h, kSppmGridCellRadii).
+struct UniformGridNarrowCells : UniformGrid {
+    UniformGridNarrowCells(UniformGrid g) : UniformGrid(std::move(g)) {}
+    template <class Exec>
+    static UniformGridNarrowCells build(Exec exec, const PointSet& points) {
+        return UniformGrid::build(exec, points, 1);
+    }
+};
+
 /// The structures compared with BruteForce, by name (test messages).
 template <class S>
 struct StructureName;
@@ -222,11 +232,13 @@ CAUSTICA_STRUCTURE_NAME(MultiHashSmallLeaves)
 CAUSTICA_STRUCTURE_NAME(BruteForce)
 CAUSTICA_STRUCTURE_NAME(KdTree)
 CAUSTICA_STRUCTURE_NAME(UniformGrid)
+CAUSTICA_STRUCTURE_NAME(UniformGridNarrowCells)
 CAUSTICA_STRUCTURE_NAME(HashGrid)
 #undef CAUSTICA_STRUCTURE_NAME
 
 /// The structures the query tests compare with BruteForce (typed test suites).
 using IndexedStructures =
-    ::testing::Types<UniformGrid, HashGrid, KdTree, MultiHash, MultiHashSmallLeaves, MultiHashCoarserCells>;
+    ::testing::Types<UniformGrid, UniformGridNarrowCells, HashGrid, KdTree, MultiHash, MultiHashSmallLeaves,
+                     MultiHashCoarserCells>;
 
 }  // namespace caustica::test

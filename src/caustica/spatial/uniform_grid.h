@@ -1,9 +1,12 @@
 // uniform_grid.h — a uniform grid over the bounding box of the points (seed 003, Lysek 2015,
 // sec. 4 "spatial grid": box of the points, cell = floor((x - box.min) / cellWidth) per axis),
 // points grouped by cell with a counting sort (cell_sort.h). The cell width comes from the
-// radius: 2 x the largest radius, so a ball of that radius overlaps 2 x 2 x 2 cells (3 along an
-// axis only within the rounding margin of conservativeReach). Segments walk the rows of cells
-// along them and k-nearest searches rings of cells outward (grid_walk.h).
+// radius: by default 2 x the largest radius, so a ball of that radius overlaps 2 x 2 x 2 cells (3
+// along an axis only within the rounding margin of conservativeReach); a build may ask for
+// narrower cells (SPPM's photon grid: 1 x, 2-3 cells along an axis but 0.56x the box's area
+// around a surface). The points' positions are also kept in cell order, so that a ball query's
+// distance test reads them in sequence. Segments walk the rows of cells along them and k-nearest
+// searches rings of cells outward (grid_walk.h).
 #pragma once
 
 #include <cmath>
@@ -22,6 +25,7 @@ namespace caustica {
 struct UniformGridView : BallQueries<UniformGridView> {
     PointSet points;
     CellLists cells;  // points grouped by cell (cell_sort.h)
+    Span<const Vec3f> cellPositions;  // cellPositions[k] = points.positions[cells.order[k]]
     Vec3f origin;     // the points' bounding box minimum
     Vec3f upper;      // and maximum (queries beyond it return at once)
     Float cellSize = 1;
@@ -55,9 +59,22 @@ struct UniformGridView : BallQueries<UniformGridView> {
         if (center.x + r < origin.x || center.y + r < origin.y || center.z + r < origin.z ||
             center.x - r > upper.x || center.y - r > upper.y || center.z - r > upper.z)
             return;
-        forEachInCellBox(
-            *this, cellOf(center - Vec3f(r)), cellOf(center + Vec3f(r)), kUnbounded,
-            [&](uint32_t i) { return acceptsPoint<kSpheres>(points, i, center, radius); }, f);
+        const CellCoord lo = cellOf(center - Vec3f(r)), hi = cellOf(center + Vec3f(r));
+        if constexpr (!kSpheres) {
+            // acceptsPoint<false> is inBall(position, center, radius): tested on the copy of the
+            // positions in cell order, one contiguous range per row.
+            for (int32_t z = lo.z; z <= hi.z; ++z)
+                for (int32_t y = lo.y; y <= hi.y; ++y) {
+                    const uint32_t row = cellIndex({lo.x, y, z});
+                    const uint32_t end = cells.cellStart[row + uint32_t(hi.x - lo.x) + 1];
+                    for (uint32_t k = cells.cellStart[row]; k < end; ++k)
+                        if (inBall(cellPositions[k], center, radius)) f(cells.order[k]);
+                }
+        } else {
+            forEachInCellBox(
+                *this, lo, hi, kUnbounded,
+                [&](uint32_t i) { return acceptsPoint<kSpheres>(points, i, center, radius); }, f);
+        }
     }
 
     /// The grid as grid_walk.h sees it: cells along one axis, clamped to the grid.
@@ -115,17 +132,17 @@ struct UniformGridLayout {
         return uint32_t(resolution.x) * uint32_t(resolution.y) * uint32_t(resolution.z);
     }
 
-    /// Cell width 2 x maxRadius; doubled until the grid has at most max(4 n, 4096) cells (and
-    /// 2^26), so that a tiny radius over a large box cannot exhaust memory. A zero radius starts
-    /// from the box's longest side / 1024 (1 for a box of one point).
-    static UniformGridLayout choose(const Bounds3f& box, Float maxRadius, size_t n) {
+    /// Cell width cellRadii x maxRadius; doubled until the grid has at most max(4 n, 4096) cells
+    /// (and 2^26), so that a tiny radius over a large box cannot exhaust memory. A zero radius
+    /// starts from the box's longest side / 1024 (1 for a box of one point).
+    static UniformGridLayout choose(const Bounds3f& box, Float maxRadius, size_t n, Float cellRadii = 2) {
         UniformGridLayout g;
         if (box.empty()) return g;
         g.origin = box.lo;
         const Vec3f extent = box.diagonal();
         const double longest = double(maxComponent(extent));
         const double maxCells = std::fmin(std::fmax(4.0 * double(n), 4096.0), double(1 << 26));
-        double cell = 2.0 * double(maxRadius);
+        double cell = double(cellRadii) * double(maxRadius);
         if (!(cell > 0)) cell = longest > 0 ? longest / 1024 : 1;
         cell = std::fmax(cell, longest / 4096);  // at most 4096 cells per axis
         for (;;) {
@@ -144,15 +161,16 @@ struct UniformGridLayout {
 };
 
 /// A uniform grid over a PointSet (see point_set.h for the interface). Build: bounding box,
-/// layout, sort of (cell, index) pairs, cell starts. Memory: 4 bytes per point + 4 per cell.
+/// layout, sort of (cell, index) pairs, cell starts, positions in cell order. Memory: 16 bytes
+/// per point + 4 per cell. `cellRadii`: the cell width in largest radii (> 0).
 class UniformGrid : public CellGrid<UniformGridView> {
 public:
     template <class Exec>
-    static UniformGrid build(Exec exec, const PointSet& points) {
+    static UniformGrid build(Exec exec, const PointSet& points, Float cellRadii = 2) {
         UniformGrid g;
         const Bounds3f box = pointBounds(exec, points.positions);
         const Float largest = maxRadius(exec, points);
-        const UniformGridLayout layout = UniformGridLayout::choose(box, largest, points.size());
+        const UniformGridLayout layout = UniformGridLayout::choose(box, largest, points.size(), cellRadii);
         g.view_.points = points;
         g.view_.origin = layout.origin;
         g.view_.upper = box.empty() ? layout.origin : box.hi;
@@ -162,10 +180,20 @@ public:
         g.view_.maxRadius = largest;
         g.cellSize_ = layout.cellSize;
         g.groupPoints(exec, layout.cellCount());
+        g.cellPositions_ = Buffer<Vec3f>(Exec::device(), points.size());
+        const Vec3f* from = points.positions.data();
+        const uint32_t* order = g.view_.cells.order.data();
+        Vec3f* to = g.cellPositions_.data();
+        launch(exec, "spatial.cell_positions", points.size(), [=] CA_HD(size_t k) { to[k] = from[order[k]]; }, 256);
+        g.view_.cellPositions = g.cellPositions_.constSpan();
         return g;
     }
 
     CellCoord resolution() const { return view_.resolution; }
+    size_t memoryBytes() const { return CellGrid<UniformGridView>::memoryBytes() + cellPositions_.size() * sizeof(Vec3f); }
+
+private:
+    Buffer<Vec3f> cellPositions_;
 };
 
 }  // namespace caustica

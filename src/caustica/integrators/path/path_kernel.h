@@ -89,12 +89,13 @@ CA_HD_INLINE void missPath(const SceneView& scene, PathState& path, const PathSe
 /// plays Russian roulette (Mitsuba 3: survival probability min(max(β)·η², 0.95)). Returns whether
 /// the path continues along `path.ray`. Draws 1+2 (NEE) + 1+2 (BSDF) + 1 (roulette) numbers per
 /// bounce, the NEE ones even at delta surfaces (a fixed layout per bounce helps Metropolis).
+/// shadeHitAt: the same step at an interaction the caller already built (computeInteraction of
+/// path.ray and its hit), so that a caller that keeps the interaction does not build it twice.
 template <class Sampler>
-CA_HD bool shadeHit(const SceneView& scene, PathState& path, const Hit& hit, Sampler& sampler,
-                    const PathSettings& settings, ShadowRay& shadow, bool& hasShadow) {
+CA_HD_INLINE bool shadeHitAt(const SceneView& scene, PathState& path, const SurfaceInteraction& si, Sampler& sampler,
+                             const PathSettings& settings, ShadowRay& shadow, bool& hasShadow) {
     hasShadow = false;
     const uint32_t maxDepth = maxDepthOf(settings);
-    const SurfaceInteraction si = computeInteraction(scene, path.ray, hit);
     const Vec3f wo = -normalize(path.ray.d);
 
     // ---- Emission found by the BSDF-sampled (or camera) ray, MIS-weighted against NEE.
@@ -159,6 +160,12 @@ CA_HD bool shadeHit(const SceneView& scene, PathState& path, const Hit& hit, Sam
         path.throughput *= 1 / q;
     }
     return true;
+}
+
+template <class Sampler>
+CA_HD bool shadeHit(const SceneView& scene, PathState& path, const Hit& hit, Sampler& sampler,
+                    const PathSettings& settings, ShadowRay& shadow, bool& hasShadow) {
+    return shadeHitAt(scene, path, computeInteraction(scene, path.ray, hit), sampler, settings, shadow, hasShadow);
 }
 
 /// Result of the visibility test of a ShadowRay that shadeHit produced for this path.

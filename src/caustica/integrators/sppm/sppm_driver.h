@@ -124,11 +124,16 @@ template <class Exec>
 std::unique_ptr<SppmDriverBase> makeSppmDriver(const Scene& scene, const Accel& accel, const SppmSettings& settings,
                                                uint64_t seed);
 
+/// The photon map's uniform grid has cells one largest radius wide (not the grid's default two):
+/// a query box of 2-3 cells along an axis instead of 2 cells of twice the width, so about 0.56x
+/// the candidates around a surface for 9 rows instead of 4 (PERFORMANCE.md, 2026-11-26, eye21).
+inline constexpr Float kSppmGridCellRadii = 1;
+
 /// Calls f(structure) with the lookup structure `kind` built over `points` on Exec's device.
 template <class Exec, class F>
 void withStructure(Exec exec, PhotonStructure kind, const PointSet& points, F&& f) {
     switch (kind) {
-        case PhotonStructure::Grid: f(UniformGrid::build(exec, points)); return;
+        case PhotonStructure::Grid: f(UniformGrid::build(exec, points, kSppmGridCellRadii)); return;
         case PhotonStructure::KdTree: f(KdTree::build(exec, points)); return;
         case PhotonStructure::MultiHash: f(MultiHash::build(exec, points)); return;
         case PhotonStructure::Brute: f(BruteForce::build(exec, points)); return;

@@ -130,18 +130,18 @@ CA_HD Spectrum sppmEyePath(const SceneView& scene, const Intersector& accel, Sam
         bool hasShadow = false;
         const uint32_t bsdf = scene.shapes[scene.shapeOf(hit.primId)].bsdf;
         const bool specular = isSpecularBsdf(scene.bsdfs, bsdf, specularBelow);
-        // The interaction only where the visible point needs it (shadeHit makes its own).
-        SurfaceInteraction si;
-        if (!specular) si = computeInteraction(scene, path.ray, hit);
-        // Emission, NEE (MIS) and the BSDF sample, as the path tracer does at this vertex.
-        const bool alive = shadeHit(scene, path, hit, sampler, bounded, shadow, hasShadow);
+        // Emission, NEE (MIS) and the BSDF sample, as the path tracer does at this vertex; the
+        // interaction is built once and kept for the visible point.
+        const SurfaceInteraction si = computeInteraction(scene, path.ray, hit);
+        const bool alive = shadeHitAt(scene, path, si, sampler, bounded, shadow, hasShadow);
         if (hasShadow) {
             ++rays;
             addShadowContribution(path, shadow, accel.occluded(shadow.ray));
         }
         if (!specular) {
             // The visible point, and the emitter found by the BSDF sample (MIS weight vs NEE):
-            // shadeHit with max_depth = depth + 1 adds the emission at the next hit and stops.
+            // shadeHit with max_depth = depth + 1 adds the emission at the next hit and stops, so
+            // a hit on a shape that emits nothing adds nothing and needs no interaction.
             vp.si = si;
             vp.wo = woHere;
             vp.beta = betaHere;
@@ -154,6 +154,7 @@ CA_HD Spectrum sppmEyePath(const SceneView& scene, const Intersector& accel, Sam
                 PathSettings emissionOnly = bounded;
                 emissionOnly.maxDepth = int(path.depth + 1);
                 if (accel.intersect(path.ray, next)) {
+                    if (scene.shapes[scene.shapeOf(next.primId)].light < 0) return path.radiance;
                     ShadowRay unused;
                     bool unusedFlag;
                     shadeHit(scene, path, next, sampler, emissionOnly, unused, unusedFlag);

@@ -15,7 +15,8 @@ namespace caustica {
 /// value: when the tree has exactly one leaf for vp.wo (a plain BSDF, or one under twosided,
 /// bumpmap, normalmap, or a blend/mask with one child of weight > 0), that leaf's resolved frame,
 /// textured parameters, local wo and weight are kept and each eval() does what LeafOps::eval and
-/// subtreeEval do with them, in the same floating-point operations; other trees call evalBsdf.
+/// subtreeEval do with them, in the same floating-point operations (a diffuse leaf in an
+/// unperturbed frame: only those its value depends on); other trees call evalBsdf.
 /// Holds a pointer into itself (the textured copy): not copyable.
 class SppmVisibleBsdf {
 public:
@@ -36,12 +37,28 @@ public:
         resolved_ = resolve(bsdfs, leaf, vp.si, vp.wo, flip);
         leafBsdf_ = &applyBsdfTextures(*resolved_.bsdf, vp.si, scratch_);
         woLocal_ = resolved_.frame.toLocal(vp.wo);
+        diffuse_ = leafBsdf_->type == BsdfType::Diffuse && !resolved_.perturbed;
     }
     SppmVisibleBsdf(const SppmVisibleBsdf&) = delete;
     SppmVisibleBsdf& operator=(const SppmVisibleBsdf&) = delete;
 
-    /// f(vp.wo, wi) · |cosθi| (evalBsdf's value).
+    /// f(vp.wo, wi) · |cosθi| (evalBsdf's value): the diffuse case here, every other one in
+    /// evalResolved.
     CA_HD Spectrum eval(Vec3f wi) const {
+        if (!diffuse_) return evalResolved(wi);
+        // A diffuse leaf in an unperturbed frame: sameSide holds, shadowTerminator is 1 (a product
+        // that changes no bit) and evalLocal reads only the local z of wi, which is toLocal's third
+        // dot product, dot(wi, n); the sum over the one leaf as subtreeEval forms it.
+        Spectrum sum;
+        const Float z = dot(wi, resolved_.frame.n);
+        if (woLocal_.z <= 0 || z <= 0) return sum;
+        sum += leafBsdf_->reflectance * (kInvPi * z) * weight_;
+        return sum;
+    }
+
+private:
+    /// eval for every other tree: the resolved leaf (as LeafOps::eval), or evalBsdf.
+    CA_HD Spectrum evalResolved(Vec3f wi) const {
         using namespace bsdf_detail;
         if (!single_) return none_ ? Spectrum{} : evalBsdf(bsdfs_, vp_.bsdf, vp_.si, vp_.wo, wi);
         // subtreeEval's sum over the one leaf, of LeafOps::eval's value.
@@ -53,10 +70,9 @@ public:
         return sum;
     }
 
-private:
     Span<const Bsdf> bsdfs_;
     const SppmVisiblePoint& vp_;
-    bool single_ = false, none_ = false;
+    bool single_ = false, none_ = false, diffuse_ = false;
     Float weight_ = 0;
     bsdf_detail::Resolved resolved_{};
     const Bsdf* leafBsdf_ = nullptr;

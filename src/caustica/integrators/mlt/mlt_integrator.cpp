@@ -92,7 +92,7 @@ MltShare mltShareOf(uint64_t total, int rank, int ranks) {
 
 MltRenderer::Impl::Impl(const Scene& scene, const PathSettings& path, const MltSettings& s, uint64_t seed,
                         Communicator& comm)
-    : settings(s), params_(mltStepParams(scene, path, s, seed)), comm_(comm) {
+    : settings(s), comm_(comm), params_(mltStepParams(scene, path, s, seed)) {
     validateMltSettings(s);
     if (s.chains < uint32_t(comm.size()))
         throw Error("MLT: " + std::to_string(s.chains) + " chains cannot be split over " +

@@ -199,6 +199,7 @@ TEST(MltRanks, BytesSentAreReported) {
         EXPECT_EQ(std::stod(statOf(session, "bytes_sent_per_iteration")), 0);
         EXPECT_EQ(std::stoull(statOf(session, "mlt_bootstrap_bytes_sent")), 2048u * 8u);
         EXPECT_EQ(std::stoull(statOf(session, "mlt_develop_bytes_sent")), 16u * 12u * 6u * 8u + 4u * 8u);
+        EXPECT_EQ(std::stoull(statOf(session, "bytes_sent")), 2048u * 8u + 16u * 12u * 6u * 8u + 4u * 8u);
     });
 }
 

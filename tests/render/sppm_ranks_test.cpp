@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "caustica/io/scene_loader.h"
@@ -93,20 +94,26 @@ TEST(SppmRanks, CheckpointOfTwoRanksContinuesAsTheUninterruptedRender) {
 TEST(SppmRanks, BytesSentPerIterationAreReported) {
     const Scene scene = causticScene(8);
     const RankRig rig(scene, photonRequest("sppm", 3, {{"photon_count", "256"}}));
-    auto bytesPerIteration = [&](int ranks) {
-        std::vector<double> bytes(static_cast<size_t>(ranks), 0.0);
+    // Per rank: bytes_sent_per_iteration, bytes_sent (the whole run: two iterations).
+    auto bytesSent = [&](int ranks) {
+        std::vector<std::pair<double, double>> bytes(static_cast<size_t>(ranks), {0.0, 0.0});
         rig.run(ranks, [&](IntegratorSession& session, Communicator& comm) {
             session.step(0);
             session.step(0);
-            for (const auto& [key, value] : session.statsJson())
-                if (key == "bytes_sent_per_iteration") bytes[size_t(comm.rank())] = std::stod(value);
+            for (const auto& [key, value] : session.statsJson()) {
+                if (key == "bytes_sent_per_iteration") bytes[size_t(comm.rank())].first = std::stod(value);
+                if (key == "bytes_sent") bytes[size_t(comm.rank())].second = std::stod(value);
+            }
         });
         return bytes;
     };
-    EXPECT_EQ(bytesPerIteration(1)[0], 0);
+    EXPECT_EQ(bytesSent(1)[0], std::make_pair(0.0, 0.0));
     // 8x8 entries of three flux sums and a count, 8 bytes each, from every rank (InProcessGroup
     // counts the bytes a rank contributes).
-    for (double b : bytesPerIteration(2)) EXPECT_EQ(b, 8 * 8 * 4 * 8);
+    for (const auto& [perIteration, whole] : bytesSent(2)) {
+        EXPECT_EQ(perIteration, 8 * 8 * 4 * 8);
+        EXPECT_EQ(whole, 2 * 8 * 8 * 4 * 8);
+    }
 }
 
 }  // namespace

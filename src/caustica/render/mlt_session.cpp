@@ -158,6 +158,7 @@ public:
                 {"mlt_sort_seconds", identityNumber(s.sortSeconds)},
                 {"mlt_ranks", std::to_string(comm_.size())},
                 {"mlt_chains_this_rank", std::to_string(mlt_->localChains())},
+                {"bytes_sent", std::to_string(comm_.bytesSent())},  // this rank's: bootstrap, sums, develops
                 {"bytes_sent_per_iteration",
                  identityNumber(iterationsThisRun_ > 0 ? double(iterationBytes_) / double(iterationsThisRun_) : 0.0)},
                 {"mlt_bootstrap_bytes_sent", std::to_string(bootstrapBytes_)},

@@ -147,6 +147,7 @@ public:
                 {"sppm_photon_seconds", identityNumber(s.photonSeconds)},
                 {"sppm_update_seconds", identityNumber(s.updateSeconds)},
                 {"sppm_ranks", std::to_string(comm_.size())},
+                {"bytes_sent", std::to_string(comm_.bytesSent())},  // this rank's, whole run
                 {"bytes_sent_per_iteration",
                  identityNumber(iterationsThisRun_ > 0 ? double(bytesSentThisRun_) / double(iterationsThisRun_) : 0.0)}};
     }

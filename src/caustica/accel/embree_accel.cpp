@@ -240,7 +240,7 @@ int widestNativePacket(RTCDevice device, int maxWidth) {
 
 }  // namespace
 
-EmbreeScene::EmbreeScene(const Scene& scene)
+EmbreeScene::EmbreeScene(const Scene& scene, const EmbreeSceneOptions& options)
     : numTriangles_(uint32_t(scene.triangles.size())),
       firstCylinder_(uint32_t(scene.triangles.size() + scene.spheres.size())) {
     const auto start = std::chrono::steady_clock::now();
@@ -254,7 +254,7 @@ EmbreeScene::EmbreeScene(const Scene& scene)
     try {
         scene_ = rtcNewScene(device_);
         check("rtcNewScene");
-        rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+        rtcSetSceneFlags(scene_, options.robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
         if (numTriangles_ > 0) {
             RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
             check("rtcNewGeometry(triangle)");

@@ -36,14 +36,23 @@ struct EmbreeIntersector {
     void occludedPacket(int n, const Ray* const* rays, uint32_t* occluded) const;
 };
 
+/// How EmbreeScene builds its scene (rtcSetSceneFlags).
+struct EmbreeSceneOptions {
+    /// RTC_SCENE_FLAG_ROBUST: robust traversal and Embree's Pluecker triangle test, watertight
+    /// along shared edges; without it, Moeller-Trumbore lets rays through shared edges and
+    /// vertices (tests/accel/watertight_test.cpp). Only tests turn it off.
+    bool robust = true;
+};
+
 /// An Embree device and scene built from a Scene: triangles as geometry 0 (RTC_GEOMETRY_TYPE_
 /// TRIANGLE, vertices and indices copied into Embree's padded buffers), spheres and cylinders as
 /// user geometries 1 and 2 whose callbacks run caustica's own intersectSphere/intersectCylinder.
-/// Built with RTC_SCENE_FLAG_ROBUST. The callbacks read `scene.spheres` and `scene.cylinders`,
-/// so `scene` must outlive this object. Errors reported by Embree are thrown as caustica::Error.
+/// Built with RTC_SCENE_FLAG_ROBUST unless `options.robust` is false. The callbacks read
+/// `scene.spheres` and `scene.cylinders`, so `scene` must outlive this object. Errors reported by
+/// Embree are thrown as caustica::Error.
 class EmbreeScene {
 public:
-    explicit EmbreeScene(const Scene& scene);
+    explicit EmbreeScene(const Scene& scene, const EmbreeSceneOptions& options = {});
     ~EmbreeScene();
     EmbreeScene(const EmbreeScene&) = delete;
     EmbreeScene& operator=(const EmbreeScene&) = delete;

@@ -41,7 +41,7 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
     for (const IntegratorEntry& e : integratorRegistry()) names.push_back(e.name);
     cmd.add_option("--integrator", r.integrator, "Integrator (overrides the scene's): " + integratorNames())
         ->check(CLI::IsMember(names));
-    cmd.add_option("--path-mode", r.pathMode, "Path tracer execution on the CPU: megakernel or wavefront (same image)")
+    cmd.add_option("--path-mode", r.pathMode, "Path tracer execution on the CPU: wavefront (default) or megakernel (same image)")
         ->check(CLI::IsMember({"megakernel", "wavefront"}));
     cmd.add_option("--device", r.device, "Where to render: cpu, cuda, or auto (the GPU when this binary has the "
                    "CUDA backend and a GPU is present, else the CPU)")->check(CLI::IsMember({"cpu", "cuda", "auto"}));

@@ -83,6 +83,14 @@ TEST_F(DeviceCli, KernelStatsTableOnTheCpu) {
     }
 }
 
+// Without --path-mode the CPU runs the wavefront (render_request.h: its default).
+TEST_F(DeviceCli, CpuPathTracerDefaultsToTheWavefront) {
+    Result r = run("render " + small() + "--device cpu -q --kernel-stats -o " + path("d.exr"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("wavefront.extend"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("path.megakernel"), std::string::npos) << r.output;
+}
+
 TEST_F(DeviceCli, GpuModeDoesNotChangeACpuRender) {
     // --gpu-mode governs the GPU only: a CPU render is the same image whatever it says.
     ASSERT_EQ(run("render " + small() + "--device cpu -q --gpu-mode megakernel -o " + path("m.exr")).exitCode, 0);

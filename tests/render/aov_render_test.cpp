@@ -144,9 +144,9 @@ TEST(AovRender, EveryIntegratorFillsTheAovs) {
     }
 }
 
-// path, direct and whitted trace each camera ray once for the image and the AOVs: the image and
-// the rays counted are those of a render without AOVs, and the AOVs those of the separate AOV pass
-// (the wavefront path tracer, which shares no hits, still runs it) bit for bit.
+// path (megakernel and wavefront), direct and whitted trace each camera ray once for the image and
+// the AOVs: the image and the rays counted are those of a render without AOVs, and the AOVs the
+// same bit for bit in every one of them.
 TEST(AovRender, PixelPassesTraceTheCameraRayOnceForImageAndAovs) {
     TempDir dir;
     auto run = [&](const std::string& aovs, const std::string& integrator, const std::string& mode) {
@@ -165,8 +165,29 @@ TEST(AovRender, PixelPassesTraceTheCameraRayOnceForImageAndAovs) {
         EXPECT_EQ(with->stats().rays, without->stats().rays);
         EXPECT_TRUE(with->developAovs().values == wavefront->developAovs().values);
     }
-    // The wavefront's AOV pass adds one ray per sample.
-    EXPECT_EQ(wavefront->stats().rays, run("", "path", "wavefront")->stats().rays + 16u * 16u * 4u);
+    // The wavefront's AOVs take the hits of its first extend stage: no ray is added.
+    const auto wavefrontWithout = run("", "path", "wavefront");
+    EXPECT_TRUE(wavefront->develop().rgb == wavefrontWithout->develop().rgb);
+    EXPECT_EQ(wavefront->stats().rays, wavefrontWithout->stats().rays);
+}
+
+// With max_depth 0 no path traces a segment, yet the AOVs are those of the camera rays' hits:
+// the wavefront traces them for the AOVs alone, as the megakernel does.
+TEST(AovRender, WavefrontAovsWithoutAnySegmentMatchTheMegakernel) {
+    TempDir dir;
+    const std::string depth0 = R"(<integrator type="path"><integer name="max_depth" value="0"/></integrator>)";
+    auto run = [&](const std::string& mode) {
+        RenderRequest r = request(kAllGeometric, "path");
+        r.pathMode = mode;
+        auto renderer = makeRenderer(dir, planeScene(depth0), r);
+        while (!renderer->finished()) renderer->step();
+        return renderer->developAovs();
+    };
+    const auto megakernel = run("megakernel"), wavefront = run("wavefront");
+    EXPECT_TRUE(wavefront.values == megakernel.values);
+    float depthSum = 0;  // the plane fills the view: every depth is 5
+    for (size_t i = 0; i < megakernel.values.size(); i += megakernel.channels.size()) depthSum += megakernel.values[i];
+    EXPECT_GT(depthSum, 0.f);
 }
 
 // The variance AOV is s² / n of each pixel's own samples: recomputed here from the passes.

@@ -30,7 +30,12 @@ struct RenderRequest {
     /// the host's GPUs (one GPU per rank), else the CUDA default (GPU 0 or CUDA_VISIBLE_DEVICES').
     int gpu = -1;
     AccelKind accel = AccelKind::Embree;  // the CPU's ray tracer (a GPU traces the own BVH)
-    std::string pathMode = "megakernel";  // CPU path tracer: megakernel | wavefront
+    /// CPU path tracer: wavefront | megakernel (the same image). The wavefront is the default: on
+    /// every bundled scene it is at least as fast as the megakernel at 1 and 2 threads with Embree
+    /// (the default accel; with the own BVH, packets of one ray, the two tie), and with AOVs it
+    /// shares its camera rays' hits as the megakernel does (docs/PERFORMANCE.md, 2026-11-27). The megakernel stays the GPU's default (gpuMode): the
+    /// GPU comparison is unmeasured.
+    std::string pathMode = "wavefront";
     std::string gpuMode = "megakernel";   // GPU path tracer: megakernel | wavefront
     /// The integrator's parameters set on the command line (integrator_registry.h lists each
     /// integrator's options); they take the place of the scene's of the same name.

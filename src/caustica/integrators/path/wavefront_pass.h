@@ -9,6 +9,9 @@
 // queue; a CPU traces one small chunk per thread at once, each stage a serial loop over the
 // chunk (SerialExec), so that the chunk's path state stays in that core's L2 cache between
 // stages and no stage waits for the other threads. The stage code is the same for both.
+//
+// AOVs (shareFirstHits) are written from the first extend stage's hits of the camera rays, so a
+// render with AOVs traces each camera ray once, as the megakernel's does.
 #pragma once
 
 #include <algorithm>
@@ -18,6 +21,8 @@
 #include <utility>
 
 #include "caustica/accel/device_scene.h"
+#include "caustica/integrators/aov/aov_kernel.h"
+#include "caustica/integrators/aov/aov_pass.h"
 #include "caustica/integrators/megakernel_pass.h"
 #include "caustica/integrators/pass_driver.h"
 #include "caustica/integrators/path/path_kernel.h"
@@ -58,14 +63,36 @@ CA_HD_INLINE void prefetchVertices(const SceneView& scene, const Hit& hit) {
     }
 }
 
+/// The AOVs of the chunk's camera rays (aov_kernel.h), written to their pass slots: for queue
+/// entries [0, count) of `queue` (null: path ids 0, 1, ...), whose camera rays the first extend
+/// stage traced (`traced`, hits and found flags in w.hit and w.alive) or, where no path traces a
+/// segment (max_depth 0), traced here. The megakernel's AOVs (FirstHitIntersector) bit for bit.
+template <class Exec, class Intersector>
+void aovStage(Exec exec, const SceneView& scene, const Intersector& accel, const megakernel_detail::AovOutput& aovs,
+              size_t begin, const PixelSample* samples, const Paths& w, const uint32_t* queue, size_t count,
+              bool traced) {
+    launch(exec, "wavefront.aov", count, [=] CA_HD(size_t j) {
+        const uint32_t i = queue ? queue[j] : uint32_t(j);
+        const size_t slot = begin + i;
+        Hit hit{};
+        if (!traced)
+            accel.intersect(w.state[i].ray, hit);
+        else if (w.alive[j])
+            hit = w.hit[i];
+        aovs.positions[slot] = samples[slot].pos;
+        aovValues(scene, w.state[i].ray, hit, aovs.layout, aovs.values + slot * size_t(aovs.layout.channels));
+    });
+}
+
 /// Traces the paths of pass slots [begin, begin + n) to completion; returns the rays traced.
+/// `aovs.values` non-null: also writes the AOVs of their camera rays (aovStage).
 /// `prefetch` > 0: the shade stage prefetches the hit data of the paths that many (and twice as
 /// many) queue entries ahead (a CPU's; 0 on a GPU, where it would only add loads).
 template <class Exec, class Intersector>
 uint64_t traceChunk(Exec exec, const SceneView& scene, const Intersector& accel, const PathSettings& settings,
                     uint64_t seed, int firstSample, int width, int k, size_t begin, size_t n,
                     PixelSample* samples, const Paths& w, uint32_t* live, uint32_t* next, uint32_t* shadowQueue,
-                    size_t prefetch) {
+                    const megakernel_detail::AovOutput& aovs, size_t prefetch) {
     uint64_t rays = 0;
     constexpr size_t kPacket = size_t(rayPacketSize<Intersector>());
     const auto packetCount = [](size_t n) { return (n + kPacket - 1) / kPacket; };
@@ -82,6 +109,9 @@ uint64_t traceChunk(Exec exec, const SceneView& scene, const Intersector& accel,
     });
     size_t liveCount = compactQueue(exec, w.alive, live, n, w.selected, next);
     std::swap(live, next);
+    if (aovs.values != nullptr && liveCount == 0)  // no segment traced (max_depth 0)
+        aovStage(exec, scene, accel, aovs, begin, samples, w, nullptr, n, false);
+    bool firstBounce = true;
 
     while (liveCount > 0) {
         const uint32_t* liveQ = live;
@@ -100,6 +130,9 @@ uint64_t traceChunk(Exec exec, const SceneView& scene, const Intersector& accel,
             intersectPacket(accel, m, rays, hits, w.alive + j0);
         });
         rays += liveCount;
+        // ---- AOVs of the camera rays, from their hits (every path is in the first queue).
+        if (aovs.values != nullptr && firstBounce) aovStage(exec, scene, accel, aovs, begin, samples, w, liveQ, liveCount, true);
+        firstBounce = false;
 
         // ---- Shade: emission, NEE sample, BSDF sample, roulette (or the miss of the scene).
         launch(exec, "wavefront.shade", liveCount, [=] CA_HD(size_t j) {
@@ -215,6 +248,12 @@ public:
             if (samples_.size() < total) samples_ = Buffer<PixelSample>(Exec::device(), total);
         buffers_.reserve(slots * chunk);
         PixelSample* out = Exec::kind == DeviceKind::Cpu ? pass.samples.data() : samples_.data();
+        megakernel_detail::AovOutput aovOut{aovLayout_};
+        if (aovs_) {
+            if (aovs_->slots() != total || aovs_->channels != aovLayout_.channels)
+                throw Error("internal: the AOV pass does not match the sample pass");
+            aovTarget_.bind(*aovs_, aovOut.positions, aovOut.values);
+        }
         std::atomic<size_t> nextChunk{0};  // chunks are handed to the slots as they free up
         std::atomic<uint64_t> rays{0};
         scene_.visit(Exec{}, [&](const auto& intersector) {
@@ -227,7 +266,7 @@ public:
                         typename Schedule::StageExec{}, scene_.view(), intersector, settings_, seed,
                         firstSampleIndex, pass.width, pass.samplesPerPixel, begin, std::min(chunk, total - begin),
                         out, w, buffers_.queueA.data() + o, buffers_.queueB.data() + o,
-                        buffers_.shadowQueue.data() + o, Schedule::prefetch);
+                        buffers_.shadowQueue.data() + o, aovOut, Schedule::prefetch);
                 }
             };
             if constexpr (Exec::kind == DeviceKind::Cpu)
@@ -236,9 +275,16 @@ public:
                 traceSlot(0);
         });
         if constexpr (Exec::kind != DeviceKind::Cpu) samples_.copyToHost(pass.span());
+        if (aovs_) aovTarget_.copyBack(*aovs_);
         return rays.load();
     }
     size_t sceneBytes() const override { return scene_.bytes(); }
+    /// The AOVs come from the first extend stage's hits (aovStage), as the megakernel's do.
+    bool shareFirstHits(const AovLayout& layout, AovSamplePass* aovs) override {
+        aovLayout_ = layout;
+        aovs_ = aovs;
+        return true;
+    }
 
 private:
     DeviceScene scene_;
@@ -246,6 +292,9 @@ private:
     size_t maxPaths_;
     Buffer<PixelSample> samples_;  // a GPU's
     wavefront_detail::ChunkBuffers<Exec> buffers_;
+    AovLayout aovLayout_;
+    AovSamplePass* aovs_ = nullptr;  // the caller's, while it shares first hits
+    AovPassTarget<Exec> aovTarget_;
 };
 
 }  // namespace caustica

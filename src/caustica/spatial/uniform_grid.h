@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "caustica/spatial/ball_range.h"
 #include "caustica/spatial/cell_sort.h"
 #include "caustica/spatial/grid_walk.h"
 #include "caustica/spatial/point_extent.h"
@@ -63,12 +64,12 @@ struct UniformGridView : BallQueries<UniformGridView> {
         if constexpr (!kSpheres) {
             // acceptsPoint<false> is inBall(position, center, radius): tested on the copy of the
             // positions in cell order, one contiguous range per row.
+            const auto report = [&](uint32_t k) { f(cells.order[k]); };
             for (int32_t z = lo.z; z <= hi.z; ++z)
                 for (int32_t y = lo.y; y <= hi.y; ++y) {
                     const uint32_t row = cellIndex({lo.x, y, z});
                     const uint32_t end = cells.cellStart[row + uint32_t(hi.x - lo.x) + 1];
-                    for (uint32_t k = cells.cellStart[row]; k < end; ++k)
-                        if (inBall(cellPositions[k], center, radius)) f(cells.order[k]);
+                    forEachInBallRange(cellPositions.data(), cells.cellStart[row], end, center, radius, report);
                 }
         } else {
             forEachInCellBox(

@@ -430,7 +430,7 @@ private:
             auto t2 = Clock::now();
             stats_.gridSeconds += std::chrono::duration<double>(t2 - t1).count();
             sppm_detail::gatherPhotons(Exec{}, scene_.view(), structure.view(), sorted_.data(), points_.data(),
-                                       list_.data(), count, stats_buf_.data(), photonDepth(), fixed_, phi_.data(),
+                                       list_.data(), count, radii_.data(), photonDepth(), fixed_, phi_.data(),
                                        m_.data());
             stats_.gatherSeconds += std::chrono::duration<double>(Clock::now() - t2).count();
         });

@@ -80,10 +80,30 @@ void footprints(Exec exec, size_t count, const uint32_t* list, const SppmVisible
     });
 }
 
+/// A CPU loop over the list (Morton order) reads the visible points and their statistics out of
+/// order, one miss each per item with little work in between to hide it: start loading the
+/// records of item j + kSppmListPrefetch (every cache line of the visible point, its statistics
+/// entry when `stats` is set). Nothing on a GPU.
+inline constexpr size_t kSppmListPrefetch = 8;
+CA_HD_INLINE void prefetchListItem(size_t j, size_t count, const uint32_t* list, const SppmVisiblePoint* points,
+                                   const SppmPixel* stats) {
+#if !CA_GPU_CODE
+    if (j + kSppmListPrefetch >= count) return;
+    const uint32_t s = list[j + kSppmListPrefetch];
+    const char* vp = reinterpret_cast<const char*>(points + s);
+    for (size_t b = 0; b < sizeof(SppmVisiblePoint); b += 64) prefetchRead(vp + b);
+    prefetchRead(vp + sizeof(SppmVisiblePoint) - 1);
+    if (stats) prefetchRead(&stats[s].radius);  // entry s: stats[s]
+#else
+    (void)j, (void)count, (void)list, (void)points, (void)stats;
+#endif
+}
+
 template <class Exec>
 void gatherPoints(Exec exec, size_t count, const uint32_t* list, const SppmVisiblePoint* points,
                   const SppmPixel* stats, Vec3f* positions, Float* radii) {
     launch(exec, "sppm.points", count, [=] CA_HD(size_t j) {
+        prefetchListItem(j, count, list, points, stats);
         const SppmVisiblePoint& vp = points[list[j]];
         positions[j] = vp.si.p;
         radii[j] = Float(stats[vp.stat].radius);
@@ -163,21 +183,22 @@ void arrangePhotons(Exec exec, size_t count, const SppmPhoton* from, const uint3
 }
 
 /// Direction "gather", second half: every listed visible point sums the photons within its
-/// radius (`lookup` over the photon positions). Each statistics entry has one visible point, so
-/// no atomics: the fixed-point sum is written once.
+/// radius (`lookup` over the photon positions; radii[j]: list[j]'s radius, gatherPoints). Each
+/// statistics entry has one visible point, so no atomics: the fixed-point sum is written once.
 template <class Exec, class Lookup>
 void gatherPhotons(Exec exec, const SceneView& view, const Lookup& lookup, const SppmPhoton* photons,
-                   const SppmVisiblePoint* points, const uint32_t* list, size_t count, const SppmPixel* stats,
+                   const SppmVisiblePoint* points, const uint32_t* list, size_t count, const Float* radii,
                    uint32_t maxDepth, SppmFixedPoint fixed, uint64_t* phi, uint64_t* m) {
     launch(
         exec, "sppm.gather", count,
         [=] CA_HD(size_t j) {
+            prefetchListItem(j, count, list, points, nullptr);
             const SppmVisiblePoint& vp = points[list[j]];
             const SppmVisibleBsdf bsdf(view.bsdfs, vp);  // resolved once for all its photons
             const auto evalAt = [&](Vec3f wi) { return bsdf.eval(wi); };
             uint64_t sum[3] = {0, 0, 0};
             uint64_t found = 0;
-            lookup.forEachPointWithin(vp.si.p, Float(stats[vp.stat].radius), [&](uint32_t i) {
+            lookup.forEachPointWithin(vp.si.p, radii[j], [&](uint32_t i) {
                 const SppmPhoton& ph = photons[i];
                 const Spectrum d = sppmContributionWith(vp, evalAt, ph.ng, ph.wo, ph.flux, ph.depth, maxDepth);
                 if (d.isBlack()) return;

@@ -11,8 +11,9 @@
 //    finds only the far side from inside, a back face, or nothing.
 //  - leaving: from a point inside the mesh, aimed at p: it must hit by t ~ 1, a back face.
 //  - inside: from a point inside the mesh, random direction, unbounded: it must hit a back face.
-// Embree with RTC_SCENE_FLAG_ROBUST (what caustica renders with) runs as tests; the intersectors
-// that leak (Embree without the flag, the own BVH) run as DISABLED_ tests that report the leaks.
+// Embree with RTC_SCENE_FLAG_ROBUST (what caustica renders with) and the own BVH (watertight
+// triangle test, primitive_intersect.h) run as tests; Embree without the flag, which leaks, runs
+// as DISABLED_ tests that report the leaks.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -511,25 +512,28 @@ TEST(Watertight, EmbreeRobustAtSharedVerticesLosesFew) {
 // Known failures, kept to measure (--gtest_also_run_disabled_tests): without the flag Embree uses
 // its Moeller-Trumbore test, whose edge functions are not computed identically by the two
 // triangles of an edge: 5-13% of the rays aimed exactly at shared edges, 14-31% at vertices are
-// lost. The own BVH (CPU and GPU) uses the same kind of test (primitive_intersect.h) and loses
-// 0.1-9% at edges, 0-6% at vertices (docs/PERFORMANCE.md, 2026-11-27); a watertight test (Woop,
-// Benthin and Wald, "Watertight Ray/Triangle Intersection", JCGT 2013) would fix both.
+// lost. The own BVH lost 0.1-9% at edges and 0-6% at vertices with that kind of test.
 TEST(Watertight, DISABLED_EmbreeNotRobust) {
     expectFewLeaks("embree (not robust)", embreeFinder(false), atEdgeOrRandom, 0);
 }
 TEST(Watertight, DISABLED_EmbreeNotRobustAtSharedVertices) {
     expectFewLeaks("embree (not robust)", embreeFinder(false), atVertex, 0);
 }
-TEST(Watertight, DISABLED_BvhStackAtSharedVertices) {
+
+// The own BVH (CPU and GPU, every traversal) with the watertight triangle test of Woop, Benthin
+// and Wald, "Watertight Ray/Triangle Intersection", JCGT 2013 (primitive_intersect.h): no ray is
+// lost, at shared vertices included, where the double-precision redo of zero edge functions
+// decides.
+TEST(Watertight, BvhStackAtSharedVertices) {
     expectFewLeaks("bvh (stack)", bvhLeaks<BvhTraversal::Stack>, atVertex, 0);
 }
-TEST(Watertight, DISABLED_BvhStack) {
+TEST(Watertight, BvhStack) {
     expectFewLeaks("bvh (stack)", bvhLeaks<BvhTraversal::Stack>, atEdgeOrRandom, 0);
 }
-TEST(Watertight, DISABLED_BvhShortStack) {
+TEST(Watertight, BvhShortStack) {
     expectFewLeaks("bvh (short stack)", bvhLeaks<BvhTraversal::ShortStack>, atEdgeOrRandom, 0);
 }
-TEST(Watertight, DISABLED_BvhStackless) {
+TEST(Watertight, BvhStackless) {
     expectFewLeaks("bvh (stackless)", bvhLeaks<BvhTraversal::Stackless>, atEdgeOrRandom, 0);
 }
 

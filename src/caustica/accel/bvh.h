@@ -60,14 +60,14 @@ static_assert(offsetof(BvhNode, hi) == offsetof(BvhNode, lo) + sizeof(BvhNode::l
 static_assert((1 << kBvhSlotBits) >= BvhNode::kWidth, "parent links must hold any slot");
 
 /// Primitive data in leaf order, precomputed for traversal so that a leaf test reads one contiguous
-/// 40-byte record instead of an index and three scattered vertices. Triangle: p0 = vertex 0,
-/// e1 = p1 - p0, e2 = p2 - p0 (the exact values intersectPrimitive computes, so results are
-/// bit-identical). Sphere: p0 = centre, e1.x = radius. Cylinder: p0 = base, e1 = unit axis,
-/// e2 = (radius, length, 0).
+/// 40-byte record instead of an index and three scattered vertices. Triangle: the exact vertex
+/// positions p0, p1, p2 (the watertight test needs them unrounded: a shared edge must be evaluated
+/// from the same operands in both its triangles, primitive_intersect.h). Sphere: p0 = centre,
+/// p1.x = radius. Cylinder: p0 = base, p1 = unit axis, p2 = (radius, length, 0).
 struct BvhPrimitive {
     Vec3f p0;
     uint32_t primId = 0;  // = primIndices[i], kept here to save a memory access per primitive
-    Vec3f e1, e2;
+    Vec3f p1, p2;
 };
 
 /// What kernels take: spans over the BVH arrays (device copies on the GPU). `prims` may be empty,

@@ -295,17 +295,17 @@ Bvh buildBvh(const Scene& scene, const BvhBuildOptions& options) {
                 if (id < numTriangles) {
                     const Vec3u tri = scene.triangles[id];
                     p.p0 = scene.positions[tri.x];
-                    p.e1 = scene.positions[tri.y] - p.p0;
-                    p.e2 = scene.positions[tri.z] - p.p0;
+                    p.p1 = scene.positions[tri.y];
+                    p.p2 = scene.positions[tri.z];
                 } else if (id < numTriangles + scene.spheres.size()) {
                     const Sphere& sphere = scene.spheres[id - numTriangles];
                     p.p0 = sphere.center;
-                    p.e1 = Vec3f(sphere.radius, 0, 0);
+                    p.p1 = Vec3f(sphere.radius, 0, 0);
                 } else {
                     const Cylinder& c = scene.cylinders[id - numTriangles - scene.spheres.size()];
                     p.p0 = c.base;
-                    p.e1 = c.axis;
-                    p.e2 = Vec3f(c.radius, c.length, 0);
+                    p.p1 = c.axis;
+                    p.p2 = Vec3f(c.radius, c.length, 0);
                 }
             });
         }

@@ -39,16 +39,17 @@ namespace bvh_detail {
 /// that the ray meets first and last, chosen by the sign of invD: since lo <= hi, the near plane's
 /// distance is exactly the min of the two that the slab test would otherwise compute (and the far
 /// plane's the max), so choosing ahead saves the min/max without changing a bit.
+/// `triangle` holds the per-ray constants of the watertight triangle test (primitive_intersect.h).
 struct TraversalRay {
-    Float4 o[3], d[3], invD[3];  // each component in all four lanes
+    Float4 o[3], invD[3];  // each component in all four lanes
     int nearPlane[3], farPlane[3];
-    CA_BVH_INLINE explicit TraversalRay(const Ray& ray) {
+    WatertightRay triangle;
+    CA_BVH_INLINE explicit TraversalRay(const Ray& ray) : triangle(makeWatertightRay(ray.d)) {
         constexpr int W = BvhNode::kWidth;
         for (int axis = 0; axis < 3; ++axis) {
             const Float d = ray.d[axis], inv = 1 / d;
             const Float invDAxis = std::fabs(inv) <= kInfinity ? inv : std::copysign(kInfinity, d);
             o[axis] = Float4::broadcast(ray.o[axis]);
-            this->d[axis] = Float4::broadcast(d);
             invD[axis] = Float4::broadcast(invDAxis);
             const bool negative = std::signbit(invDAxis);
             nearPlane[axis] = (negative ? 3 * W : 0) + axis * W;
@@ -116,15 +117,17 @@ CA_BVH_INLINE bool followsInOrder(int k, int after, const Float* tEntry) {
 }
 
 /// Tests precomputed primitive `p` (BvhPrimitive) against [0, hit.t), updating `hit` on a hit.
+/// `triangle` is the ray's WatertightRay.
 CA_BVH_INLINE bool intersectPrecomputed(const BvhPrimitive& p, uint32_t numTriangles,
-                                        uint32_t firstCylinder, const Ray& ray, Hit& hit) {
+                                        uint32_t firstCylinder, const WatertightRay& triangle,
+                                        const Ray& ray, Hit& hit) {
     const uint32_t id = p.primId;
     Float t, b1 = 0, b2 = 0;
     const bool h = id < numTriangles
-                       ? intersectTriangle(ray.o, ray.d, hit.t, p.p0, p.e1, p.e2, t, b1, b2)
+                       ? intersectTriangleWith(triangle, ray.o, hit.t, p.p0, p.p1, p.p2, t, b1, b2)
                    : id < firstCylinder
-                       ? intersectSphere(ray.o, ray.d, hit.t, p.p0, p.e1.x, t)
-                       : intersectCylinder(ray.o, ray.d, hit.t, p.p0, p.e1, p.e2.x, p.e2.y, t);
+                       ? intersectSphere(ray.o, ray.d, hit.t, p.p0, p.p1.x, t)
+                       : intersectCylinder(ray.o, ray.d, hit.t, p.p0, p.p1, p.p2.x, p.p2.y, t);
     if (!h) return false;
     hit.t = t;
     hit.primId = id;
@@ -143,7 +146,7 @@ template <bool AnyHit>
 CA_BVH_INLINE bool intersectLeaf4(const BvhView& bvh, uint32_t numTriangles, uint32_t firstCylinder,
                                   uint32_t begin, uint32_t end, const TraversalRay& r,
                                   const Ray& ray, Hit& hit) {
-    const Vec3x4 o{r.o[0].v, r.o[1].v, r.o[2].v}, d{r.d[0].v, r.d[1].v, r.d[2].v};
+    const Vec3x4 o{r.o[0].v, r.o[1].v, r.o[2].v};
     bool found = false;
     for (uint32_t i = begin; i < end; i += 4) {
         uint32_t index[4];
@@ -151,14 +154,15 @@ CA_BVH_INLINE bool intersectLeaf4(const BvhView& bvh, uint32_t numTriangles, uin
         const Triangle4 tri = Triangle4::load(bvh.prims.data(), index);
         if (end - i < 3 || tri.triangleLanes(numTriangles) != 0xFu) {
             for (uint32_t j = i; j < min(i + 4, end); ++j)
-                if (intersectPrecomputed(bvh.prims[j], numTriangles, firstCylinder, ray, hit)) {
+                if (intersectPrecomputed(bvh.prims[j], numTriangles, firstCylinder, r.triangle, ray,
+                                         hit)) {
                     if (AnyHit) return true;
                     found = true;
                 }
             continue;
         }
         float t[4], b1[4], b2[4];
-        uint32_t mask = intersectTriangle4(o, d, hit.t, tri, t, b1, b2);
+        uint32_t mask = intersectTriangle4(o, r.triangle, hit.t, tri, t, b1, b2);
         if (mask == 0) continue;
         if (AnyHit) return true;
         int best = lowestBit(mask);
@@ -196,7 +200,7 @@ CA_BVH_INLINE bool intersectLeaf(const BvhView& bvh, const SceneView& scene, uin
     return intersectLeaf4<AnyHit>(bvh, numTriangles, firstCylinder, begin, end, r, ray, hit);
 #else
     for (uint32_t i = begin; i < end; ++i) {
-        if (intersectPrecomputed(bvh.prims[i], numTriangles, firstCylinder, ray, hit)) {
+        if (intersectPrecomputed(bvh.prims[i], numTriangles, firstCylinder, r.triangle, ray, hit)) {
             if (AnyHit) return true;
             found = true;
         }

@@ -16,40 +16,100 @@
 
 namespace caustica {
 
-/// Ray–triangle intersection in the Möller–Trumbore form (Möller and Trumbore, "Fast, Minimum
-/// Storage Ray/Triangle Intersection", JGT 1997) rewritten with scalar triple products around the
-/// unnormalised geometric normal n = e1 x e2, as Embree's Möller intersector does. By Cramer's rule
-/// on o + t d = p0 + b1 e1 + b2 e2, with c = p0 - o, r = c x d and den = d . n:
-///     t = (c . n) / den,   b1 = (e2 . r) / den,   b2 = -(e1 . r) / den.
-/// Divisions happen only for accepted hits. A zero-area triangle whose cross product is exactly
-/// zero (repeated vertices) has den = 0 and is never hit. `p0` is vertex 0, `e1 = p1 - p0`,
-/// `e2 = p2 - p0`; b1, b2 are the barycentrics of vertices 1 and 2.
-CA_BVH_INLINE bool intersectTriangle(Vec3f o, Vec3f d, Float tMax, Vec3f p0, Vec3f e1, Vec3f e2,
-                                     Float& tOut, Float& b1Out, Float& b2Out) {
-    const Vec3f n = cross(e1, e2);
-    const Float den = dot(d, n);
-    const Vec3f c = p0 - o;
-    const Vec3f r = cross(c, d);
-    Float u = dot(e2, r), v = -dot(e1, r), tNum = dot(c, n);
-    Float absDen = den;
-    if (den < 0) {
-        u = -u;
-        v = -v;
-        tNum = -tNum;
-        absDen = -den;
+/// Per-ray constants of the watertight ray–triangle test (Woop, Benthin and Wald, "Watertight
+/// Ray/Triangle Intersection", JCGT 2(1), 2013, sec. 3): the ray is mapped to the +z axis of a
+/// sheared space, in which triangles are tested in 2D. kz is the axis of the largest |d|, kx and
+/// ky the next two (cyclically), swapped when d[kz] < 0 so that the winding is kept; the shear is
+/// sx = d[kx] / d[kz], sy = d[ky] / d[kz], sz = 1 / d[kz]. Compute once per ray.
+struct WatertightRay {
+    int kx, ky, kz;
+    Float sx, sy, sz;
+};
+
+CA_BVH_INLINE WatertightRay makeWatertightRay(Vec3f d) {
+    const Float ax = std::fabs(d.x), ay = std::fabs(d.y), az = std::fabs(d.z);
+    const int kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
+    int kx = kz == 2 ? 0 : kz + 1, ky = kx == 2 ? 0 : kx + 1;
+    if (d[kz] < 0) {
+        const int k = kx;
+        kx = ky;
+        ky = k;
     }
-    // One branch for all conditions (non-short-circuit &): a chain of data-dependent early exits
-    // mispredicts often in traversal. Every comparison rejects NaNs (non-finite input).
-    if (!((absDen > 0) & (u >= 0) & (v >= 0) & (u + v <= absDen) & (tNum > 0) &
-          (tNum < absDen * tMax)))
-        return false;
-    const Float invDen = 1 / absDen;
-    const Float t = tNum * invDen;
+    return WatertightRay{kx, ky, kz, d[kx] / d[kz], d[ky] / d[kz], 1 / d[kz]};
+}
+
+namespace watertight_detail {
+/// a * b rounded on its own. Watertightness rests on a shared edge's function being the exact
+/// negation in its two triangles, so no product may be fused into a multiply-add: on the GPU the
+/// intrinsic forbids contraction; the host build targets baseline x86-64, which has no FMA (a
+/// build with -mfma would need -ffp-contract=off; the watertight and triangle4 tests would show it).
+CA_BVH_INLINE Float mulRounded(Float a, Float b) {
+#ifdef __CUDA_ARCH__
+    return __fmul_rn(a, b);
+#else
+    return a * b;
+#endif
+}
+/// The 2D edge function px qy - py qx of the edge (p, q) in sheared space; (q, p) gives exactly
+/// its negation, as the two triangles of a shared edge evaluate it.
+CA_BVH_INLINE Float edgeFunction(Float px, Float py, Float qx, Float qy) {
+    return mulRounded(px, qy) - mulRounded(py, qx);
+}
+/// The same in double precision, where the products are exact: its sign is exact, for edge
+/// functions that came out exactly 0 in float (the ray passes through an edge or vertex).
+CA_BVH_INLINE Float edgeFunctionDouble(Float px, Float py, Float qx, Float qy) {
+    return Float(double(px) * double(qy) - double(py) * double(qx));
+}
+}  // namespace watertight_detail
+
+/// Watertight ray–triangle intersection (Woop, Benthin and Wald, JCGT 2013, fig. 2 and sec. 4),
+/// for the triangle of vertices p0, p1, p2 (exact positions, not precomputed edges): the vertices
+/// relative to the ray origin are sheared (WatertightRay) and the 2D edge functions
+///     U = E(p2, p1),   V = E(p0, p2),   W = E(p1, p0),   E(p, q) = px qy - py qx
+/// are computed from the same operands for an edge in both its triangles, so a ray through a
+/// shared edge or vertex never slips between them; where any is exactly 0 all three are redone
+/// in double precision. Both windings are hit (all >= 0 or all <= 0); det = U + V + W,
+/// t = (U z0 + V z1 + W z2) / det with z = sz * (p - o)[kz], tested against (0, tMax) scaled by
+/// |det| before dividing. b1 = V / det and b2 = W / det are the barycentrics of vertices 1 and 2.
+/// Zero-area triangles (det = 0) and non-finite input are never hit.
+CA_BVH_INLINE bool intersectTriangleWith(const WatertightRay& r, Vec3f o, Float tMax, Vec3f p0,
+                                         Vec3f p1, Vec3f p2, Float& tOut, Float& b1Out,
+                                         Float& b2Out) {
+    using namespace watertight_detail;
+    const Vec3f a = p0 - o, b = p1 - o, c = p2 - o;
+    const Float ax = a[r.kx] - mulRounded(r.sx, a[r.kz]), ay = a[r.ky] - mulRounded(r.sy, a[r.kz]);
+    const Float bx = b[r.kx] - mulRounded(r.sx, b[r.kz]), by = b[r.ky] - mulRounded(r.sy, b[r.kz]);
+    const Float cx = c[r.kx] - mulRounded(r.sx, c[r.kz]), cy = c[r.ky] - mulRounded(r.sy, c[r.kz]);
+    Float u = edgeFunction(cx, cy, bx, by), v = edgeFunction(ax, ay, cx, cy),
+          w = edgeFunction(bx, by, ax, ay);
+    if ((u == 0) | (v == 0) | (w == 0)) {
+        u = edgeFunctionDouble(cx, cy, bx, by);
+        v = edgeFunctionDouble(ax, ay, cx, cy);
+        w = edgeFunctionDouble(bx, by, ax, ay);
+    }
+    // One branch per stage (non-short-circuit |, &): data-dependent early exits mispredict.
+    if (((u < 0) | (v < 0) | (w < 0)) & ((u > 0) | (v > 0) | (w > 0))) return false;
+    const Float det = u + v + w;
+    const Float tNum = u * mulRounded(r.sz, a[r.kz]) + v * mulRounded(r.sz, b[r.kz]) +
+                       w * mulRounded(r.sz, c[r.kz]);
+    // Signs flipped where det < 0, so that the tests below read as for det > 0. Every
+    // comparison rejects NaNs.
+    const bool flip = det < 0;
+    const Float absDet = flip ? -det : det, tPos = flip ? -tNum : tNum;
+    if (!((absDet > 0) & (tPos > 0) & (tPos < absDet * tMax))) return false;
+    const Float invDet = 1 / absDet;
+    const Float t = tPos * invDet;
     if (!(t > 0 && t < tMax)) return false;
     tOut = t;
-    b1Out = u * invDen;
-    b2Out = v * invDen;
+    b1Out = (flip ? -v : v) * invDet;
+    b2Out = (flip ? -w : w) * invDet;
     return true;
+}
+
+/// intersectTriangleWith for a single ray (the per-ray constants computed here).
+CA_BVH_INLINE bool intersectTriangle(Vec3f o, Vec3f d, Float tMax, Vec3f p0, Vec3f p1, Vec3f p2,
+                                     Float& tOut, Float& b1Out, Float& b2Out) {
+    return intersectTriangleWith(makeWatertightRay(d), o, tMax, p0, p1, p2, tOut, b1Out, b2Out);
 }
 
 /// Ray–sphere intersection with the numerically robust quadratic of Haines, Günther and
@@ -131,10 +191,9 @@ CA_HD_INLINE bool intersectPrimitive(const SceneView& scene, uint32_t primId, co
     const uint32_t numTriangles = scene.numTriangles();
     if (primId < numTriangles) {
         const Vec3u tri = scene.triangles[primId];
-        const Vec3f p0 = scene.positions[tri.x];
         Float t, b1, b2;
-        if (!intersectTriangle(ray.o, ray.d, tMax, p0, scene.positions[tri.y] - p0,
-                               scene.positions[tri.z] - p0, t, b1, b2))
+        if (!intersectTriangle(ray.o, ray.d, tMax, scene.positions[tri.x],
+                               scene.positions[tri.y], scene.positions[tri.z], t, b1, b2))
             return false;
         hit.t = t;
         hit.primId = primId;

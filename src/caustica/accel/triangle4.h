@@ -1,8 +1,8 @@
 // triangle4.h — one ray against four precomputed triangles at once with SSE (host only).
 //
-// The lanes run exactly the operations of intersectTriangle (primitive_intersect.h) in the same
-// order, without fused multiply-adds, so every lane's t, b1, b2 are bit-identical to the scalar
-// test's; the GPU and hosts without SSE keep the scalar loop (bvh_traversal.h, intersectLeaf).
+// The lanes run exactly the operations of the watertight intersectTriangle (primitive_intersect.h)
+// in the same order, without fused multiply-adds, so every lane's t, b1, b2 are bit-identical to
+// the scalar test's (its double-precision redo of zero edge functions included); the GPU and hosts without SSE keep the scalar loop (bvh_traversal.h, intersectLeaf).
 // Triangles are read from the leaf-order BvhPrimitive array (40 bytes each, AoS) and transposed
 // into lanes, so the layout the GPU reads stays unchanged.
 #pragma once
@@ -10,6 +10,7 @@
 #include <cstdint>
 
 #include "caustica/accel/bvh.h"
+#include "caustica/accel/primitive_intersect.h"
 #include "caustica/accel/simd4.h"
 
 #if CA_BVH_SSE
@@ -26,22 +27,17 @@ inline Vec3x4 broadcast3(Vec3f v) {
 inline Vec3x4 operator-(Vec3x4 a, Vec3x4 b) {
     return {_mm_sub_ps(a.x, b.x), _mm_sub_ps(a.y, b.y), _mm_sub_ps(a.z, b.z)};
 }
-// dot and cross in the evaluation order of math.h's.
-inline __m128 dot(Vec3x4 a, Vec3x4 b) {
-    return _mm_add_ps(_mm_add_ps(_mm_mul_ps(a.x, b.x), _mm_mul_ps(a.y, b.y)), _mm_mul_ps(a.z, b.z));
-}
-inline Vec3x4 cross(Vec3x4 a, Vec3x4 b) {
-    return {_mm_sub_ps(_mm_mul_ps(a.y, b.z), _mm_mul_ps(a.z, b.y)),
-            _mm_sub_ps(_mm_mul_ps(a.z, b.x), _mm_mul_ps(a.x, b.z)),
-            _mm_sub_ps(_mm_mul_ps(a.x, b.y), _mm_mul_ps(a.y, b.x))};
+/// Coordinate `axis` (0, 1, 2) of the four lanes.
+inline __m128 component(const Vec3x4& v, int axis) {
+    return axis == 0 ? v.x : axis == 1 ? v.y : v.z;
 }
 
-/// Four triangles in lanes: p0, e1, e2 and the primitive ids.
+/// Four triangles in lanes: their vertices and the primitive ids.
 struct Triangle4 {
-    Vec3x4 p0, e1, e2;
+    Vec3x4 p0, p1, p2;
     __m128i ids;
 
-    /// Transposes prims[index[0..3]]. A BvhPrimitive is p0.xyz id | e1.xyz e2.x | e2.yz; the
+    /// Transposes prims[index[0..3]]. A BvhPrimitive is p0.xyz id | p1.xyz p2.x | p2.yz; the
     /// three 16-byte loads per triangle (at bytes 0, 16 and 24) stay inside the record.
     static Triangle4 load(const BvhPrimitive* prims, const uint32_t index[4]) {
         static_assert(sizeof(BvhPrimitive) == 40, "the loads below assume the 40-byte record");
@@ -49,8 +45,8 @@ struct Triangle4 {
         for (int l = 0; l < 4; ++l) {
             const float* f = reinterpret_cast<const float*>(prims + index[l]);
             a[l] = _mm_loadu_ps(f);      // p0.x p0.y p0.z id
-            b[l] = _mm_loadu_ps(f + 4);  // e1.x e1.y e1.z e2.x
-            c[l] = _mm_loadu_ps(f + 6);  // e1.z e2.x e2.y e2.z
+            b[l] = _mm_loadu_ps(f + 4);  // p1.x p1.y p1.z p2.x
+            c[l] = _mm_loadu_ps(f + 6);  // p1.z p2.x p2.y p2.z
         }
         _MM_TRANSPOSE4_PS(a[0], a[1], a[2], a[3]);
         _MM_TRANSPOSE4_PS(b[0], b[1], b[2], b[3]);
@@ -67,34 +63,68 @@ struct Triangle4 {
     }
 };
 
-/// intersectTriangle on four lanes: returns the mask of lanes hit in (0, tMax) and their t, b1, b2.
-inline uint32_t intersectTriangle4(const Vec3x4& o, const Vec3x4& d, float tMax,
+/// The watertight intersectTriangleWith (primitive_intersect.h) on four lanes, for the ray of origin
+/// `o` (broadcast) and per-ray constants `r`: returns the mask of lanes hit in (0, tMax) and their
+/// t, b1, b2.
+inline uint32_t intersectTriangle4(const Vec3x4& o, const WatertightRay& r, float tMax,
                                    const Triangle4& tri, float tOut[4], float b1Out[4],
                                    float b2Out[4]) {
     const __m128 zero = _mm_setzero_ps(), signBit = _mm_set1_ps(-0.0f);
-    const __m128 limit = _mm_set1_ps(tMax);
-    const Vec3x4 n = cross(tri.e1, tri.e2);
-    const __m128 den = dot(d, n);
-    const Vec3x4 c = tri.p0 - o;
-    const Vec3x4 r = cross(c, d);
-    // u = e2 . r, v = -(e1 . r), tNum = c . n, all negated where den < 0 (a sign flip, as `-x`).
-    const __m128 flip = _mm_and_ps(_mm_cmplt_ps(den, zero), signBit);
-    const __m128 u = _mm_xor_ps(dot(tri.e2, r), flip);
-    const __m128 v = _mm_xor_ps(_mm_xor_ps(dot(tri.e1, r), signBit), flip);
-    const __m128 tNum = _mm_xor_ps(dot(c, n), flip);
-    const __m128 absDen = _mm_xor_ps(den, flip);
-    __m128 ok = _mm_and_ps(_mm_cmpgt_ps(absDen, zero), _mm_cmpge_ps(u, zero));
-    ok = _mm_and_ps(ok, _mm_cmpge_ps(v, zero));
-    ok = _mm_and_ps(ok, _mm_cmple_ps(_mm_add_ps(u, v), absDen));
-    ok = _mm_and_ps(ok, _mm_cmpgt_ps(tNum, zero));
-    ok = _mm_and_ps(ok, _mm_cmplt_ps(tNum, _mm_mul_ps(absDen, limit)));
+    const __m128 sx = _mm_set1_ps(r.sx), sy = _mm_set1_ps(r.sy), sz = _mm_set1_ps(r.sz);
+    // Vertices relative to the origin, sheared: x, y in the plane, z along the ray.
+    struct Sheared {
+        __m128 x, y, z;
+    };
+    auto shear = [&](const Vec3x4& p) {
+        const Vec3x4 rel = p - o;
+        const __m128 z = component(rel, r.kz);
+        return Sheared{_mm_sub_ps(component(rel, r.kx), _mm_mul_ps(sx, z)),
+                       _mm_sub_ps(component(rel, r.ky), _mm_mul_ps(sy, z)), z};
+    };
+    const Sheared a = shear(tri.p0), b = shear(tri.p1), c = shear(tri.p2);
+    auto edge = [](const Sheared& p, const Sheared& q) {
+        return _mm_sub_ps(_mm_mul_ps(p.x, q.y), _mm_mul_ps(p.y, q.x));
+    };
+    __m128 u = edge(c, b), v = edge(a, c), w = edge(b, a);
+    const uint32_t redo = uint32_t(_mm_movemask_ps(_mm_or_ps(
+        _mm_or_ps(_mm_cmpeq_ps(u, zero), _mm_cmpeq_ps(v, zero)), _mm_cmpeq_ps(w, zero))));
+    if (redo != 0) {  // some lane's ray passes through an edge or vertex: as the scalar test
+        alignas(16) float ax[4], ay[4], bx[4], by[4], cx[4], cy[4], uu[4], vv[4], ww[4];
+        _mm_store_ps(ax, a.x), _mm_store_ps(ay, a.y), _mm_store_ps(bx, b.x);
+        _mm_store_ps(by, b.y), _mm_store_ps(cx, c.x), _mm_store_ps(cy, c.y);
+        _mm_store_ps(uu, u), _mm_store_ps(vv, v), _mm_store_ps(ww, w);
+        for (uint32_t m = redo; m != 0; m &= m - 1) {
+            const int l = lowestBit(m);
+            uu[l] = watertight_detail::edgeFunctionDouble(cx[l], cy[l], bx[l], by[l]);
+            vv[l] = watertight_detail::edgeFunctionDouble(ax[l], ay[l], cx[l], cy[l]);
+            ww[l] = watertight_detail::edgeFunctionDouble(bx[l], by[l], ax[l], ay[l]);
+        }
+        u = _mm_load_ps(uu), v = _mm_load_ps(vv), w = _mm_load_ps(ww);
+    }
+    const __m128 anyNegative = _mm_or_ps(
+        _mm_or_ps(_mm_cmplt_ps(u, zero), _mm_cmplt_ps(v, zero)), _mm_cmplt_ps(w, zero));
+    const __m128 anyPositive = _mm_or_ps(
+        _mm_or_ps(_mm_cmpgt_ps(u, zero), _mm_cmpgt_ps(v, zero)), _mm_cmpgt_ps(w, zero));
+    __m128 ok = _mm_andnot_ps(_mm_and_ps(anyNegative, anyPositive), _mm_cmpeq_ps(zero, zero));
     if (_mm_movemask_ps(ok) == 0) return 0;
-    const __m128 invDen = _mm_div_ps(_mm_set1_ps(1.0f), absDen);
-    const __m128 t = _mm_mul_ps(tNum, invDen);
+    const __m128 det = _mm_add_ps(_mm_add_ps(u, v), w);
+    const __m128 tNum =
+        _mm_add_ps(_mm_add_ps(_mm_mul_ps(u, _mm_mul_ps(sz, a.z)), _mm_mul_ps(v, _mm_mul_ps(sz, b.z))),
+                   _mm_mul_ps(w, _mm_mul_ps(sz, c.z)));
+    // Signs flipped where det < 0 (a sign flip, as `-x`).
+    const __m128 flip = _mm_and_ps(_mm_cmplt_ps(det, zero), signBit);
+    const __m128 absDet = _mm_xor_ps(det, flip), tPos = _mm_xor_ps(tNum, flip);
+    const __m128 limit = _mm_set1_ps(tMax);
+    ok = _mm_and_ps(ok, _mm_cmpgt_ps(absDet, zero));
+    ok = _mm_and_ps(ok, _mm_cmpgt_ps(tPos, zero));
+    ok = _mm_and_ps(ok, _mm_cmplt_ps(tPos, _mm_mul_ps(absDet, limit)));
+    if (_mm_movemask_ps(ok) == 0) return 0;
+    const __m128 invDet = _mm_div_ps(_mm_set1_ps(1.0f), absDet);
+    const __m128 t = _mm_mul_ps(tPos, invDet);
     ok = _mm_and_ps(ok, _mm_and_ps(_mm_cmpgt_ps(t, zero), _mm_cmplt_ps(t, limit)));
     _mm_storeu_ps(tOut, t);
-    _mm_storeu_ps(b1Out, _mm_mul_ps(u, invDen));
-    _mm_storeu_ps(b2Out, _mm_mul_ps(v, invDen));
+    _mm_storeu_ps(b1Out, _mm_mul_ps(_mm_xor_ps(v, flip), invDet));
+    _mm_storeu_ps(b2Out, _mm_mul_ps(_mm_xor_ps(w, flip), invDet));
     return uint32_t(_mm_movemask_ps(ok));
 }
 

@@ -1,7 +1,9 @@
 // golden_images_test.cpp — images do not change when the code around the kernels does: each
 // bundled scene rendered small at a fixed seed and sample count gives, bit for bit, the image the
 // renderer gave before the render session and the single-source drivers (tests/e2e/data/golden,
-// made by commit 82801bb's caustica with the commands below). The path tracer's two execution
+// made by commit 82801bb's caustica with the commands below; re-made once when the own BVH's
+// triangle test became watertight (Woop et al. 2013): its barycentrics and t round differently,
+// and the six images moved by relMSE 1.7e-14 to 4.2e-9, means equal). The path tracer's two execution
 // modes give that same image; MLT's is compared with sort splats (atomic splats add in an order
 // that varies from run to run).
 //

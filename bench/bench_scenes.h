@@ -97,6 +97,7 @@ inline Scene makeProceduralScene(int levels) {
     scene.triangles.push_back({base, base + 2, base + 1});
     scene.triangles.push_back({base, base + 3, base + 2});
     scene.triangleShape.assign(scene.triangles.size(), 0);
+    reserveVertexPadding(scene);
 
     Camera& cam = scene.camera;
     cam.width = 640;

@@ -238,7 +238,33 @@ int widestNativePacket(RTCDevice device, int maxWidth) {
     return 1;
 }
 
+static_assert(sizeof(Vec3f) == 12 && alignof(Vec3f) % 4 == 0, "Embree's RTC_FORMAT_FLOAT3 layout");
+static_assert(sizeof(Vec3u) == 12 && alignof(Vec3u) % 4 == 0, "Embree's RTC_FORMAT_UINT3 layout");
+
 }  // namespace
+
+bool sharesVertexArray(const std::vector<Vec3f>& positions) {
+    return positions.capacity() > positions.size();
+}
+
+void EmbreeScene::setTriangleBuffers(RTCGeometryTy* geom, const Scene& scene) {
+    // The index triples are shared as they are. Embree reads a vertex with a 16-byte load, 4 bytes
+    // past its end (it even reads the last vertex's 4 bytes at once, buffer.h checkPadding16), so
+    // the positions are shared only when the vector's spare capacity holds those 4 bytes; else
+    // they are copied into a buffer Embree pads itself (the geometry then owns that copy).
+    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                               scene.triangles.data(), 0, sizeof(Vec3u), numTriangles_);
+    sharesVertices_ = sharesVertexArray(scene.positions);
+    if (sharesVertices_) {
+        rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                   scene.positions.data(), 0, sizeof(Vec3f), scene.positions.size());
+        return;
+    }
+    void* vertices = rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                             sizeof(Vec3f), scene.positions.size());
+    if (vertices)
+        std::memcpy(vertices, scene.positions.data(), scene.positions.size() * sizeof(Vec3f));
+}
 
 EmbreeScene::EmbreeScene(const Scene& scene, const EmbreeSceneOptions& options)
     : numTriangles_(uint32_t(scene.triangles.size())),
@@ -258,16 +284,8 @@ EmbreeScene::EmbreeScene(const Scene& scene, const EmbreeSceneOptions& options)
         if (numTriangles_ > 0) {
             RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
             check("rtcNewGeometry(triangle)");
-            // Embree-allocated buffers are padded for its 16-byte loads; shared std::vectors are
-            // not.
-            void* vertices =
-                rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                        sizeof(Vec3f), scene.positions.size());
-            void* indices = rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0,
-                                                    RTC_FORMAT_UINT3, sizeof(Vec3u), numTriangles_);
-            check("rtcSetNewGeometryBuffer");
-            std::memcpy(vertices, scene.positions.data(), scene.positions.size() * sizeof(Vec3f));
-            std::memcpy(indices, scene.triangles.data(), numTriangles_ * sizeof(Vec3u));
+            setTriangleBuffers(geom, scene);
+            check("triangle buffers");
             rtcCommitGeometry(geom);
             rtcAttachGeometryByID(scene_, geom, kTriangleGeomId);
             rtcReleaseGeometry(geom);

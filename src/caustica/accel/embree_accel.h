@@ -11,6 +11,7 @@
 
 struct RTCDeviceTy;  // Embree's opaque handle types (RTCDevice, RTCScene)
 struct RTCSceneTy;
+struct RTCGeometryTy;
 
 namespace caustica {
 
@@ -44,12 +45,20 @@ struct EmbreeSceneOptions {
     bool robust = true;
 };
 
+/// Whether Embree may read `positions` in place (rtcSetSharedGeometryBuffer): its 16-byte vertex
+/// loads read 4 bytes past the last vertex, which must lie inside the allocation, so the vector
+/// needs spare capacity (reserveVertexPadding, scene.h, gives it one vertex).
+bool sharesVertexArray(const std::vector<Vec3f>& positions);
+
 /// An Embree device and scene built from a Scene: triangles as geometry 0 (RTC_GEOMETRY_TYPE_
-/// TRIANGLE, vertices and indices copied into Embree's padded buffers), spheres and cylinders as
-/// user geometries 1 and 2 whose callbacks run caustica's own intersectSphere/intersectCylinder.
-/// Built with RTC_SCENE_FLAG_ROBUST unless `options.robust` is false. The callbacks read
-/// `scene.spheres` and `scene.cylinders`, so `scene` must outlive this object. Errors reported by
-/// Embree are thrown as caustica::Error.
+/// TRIANGLE over the Scene's own index and vertex arrays, shared, not copied; the vertices are
+/// copied into a padded Embree buffer only where sharesVertexArray is false), spheres and
+/// cylinders as user geometries 1 and 2 whose callbacks run caustica's own intersectSphere/
+/// intersectCylinder. Built with RTC_SCENE_FLAG_ROBUST unless `options.robust` is false. Embree
+/// reads `scene.triangles`, `scene.positions` (while building) and the callbacks `scene.spheres`
+/// and `scene.cylinders`, so `scene` must outlive this object and its arrays must not be resized
+/// or reassigned meanwhile (moving the Scene keeps them). Errors reported by Embree are thrown as
+/// caustica::Error.
 class EmbreeScene {
 public:
     explicit EmbreeScene(const Scene& scene, const EmbreeSceneOptions& options = {});
@@ -66,10 +75,13 @@ public:
     /// The widest packet (16, 8, 4 or 1) Embree runs natively on this CPU.
     int nativePacketWidth() const { return nativePacketWidth_; }
     double buildMilliseconds() const { return buildMilliseconds_; }
+    /// Whether Embree reads the Scene's positions in place (else its own padded copy).
+    bool sharesVertices() const { return sharesVertices_; }
 
 private:
     void check(const char* what);  // throws caustica::Error if the device reports an error
     void release();
+    void setTriangleBuffers(RTCGeometryTy* geom, const Scene& scene);
     template <class Prim>
     void addUserGeometry(const std::vector<Prim>& prims, unsigned geomId, const char* what);
 
@@ -79,6 +91,7 @@ private:
     uint32_t firstCylinder_ = 0;
     int packetWidth_ = 1;
     int nativePacketWidth_ = 1;
+    bool sharesVertices_ = false;
     double buildMilliseconds_ = 0;
     std::string lastMessage_;  // filled by the device's error callback
 };

@@ -49,4 +49,9 @@ Bounds3f Scene::bounds() const {
     return b;
 }
 
+void reserveVertexPadding(Scene& scene) {
+    if (scene.positions.capacity() <= scene.positions.size())
+        scene.positions.reserve(scene.positions.size() + 1);
+}
+
 }  // namespace caustica

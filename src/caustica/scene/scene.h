@@ -129,6 +129,11 @@ struct Scene {
     Bounds3f primitiveBounds(uint32_t primId) const;
 };
 
+/// Gives `scene.positions` spare capacity for one more vertex, so that Embree can read the array
+/// in place (its 16-byte loads read 4 bytes past the last vertex; accel/embree_accel.h,
+/// sharesVertexArray). Call once the positions are complete; the contents do not change.
+void reserveVertexPadding(Scene& scene);
+
 /// Appends `prim` (a Sphere or a Cylinder) to `prims` as the one primitive of shape `shapeIndex`
 /// and returns that shape's record (type, primOffset, primCount = 1; the caller sets the rest).
 template <class Prim>

@@ -103,6 +103,7 @@ Scene buildScene(const SceneDescription& desc, std::vector<std::string>& warning
     }
     if (sensor < 0) throw Error(desc.file, 0, "scene has no sensor");
     finalizeLights(scene);
+    reserveVertexPadding(scene);
     return scene;
 }
 

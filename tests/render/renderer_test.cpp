@@ -7,6 +7,7 @@
 #include <iterator>
 #include <sstream>
 
+#include "caustica/accel/embree_accel.h"
 #include "caustica/io/scene_loader.h"
 #include "caustica/render/renderer.h"
 #include "caustica/util/error.h"
@@ -82,6 +83,21 @@ protected:
 void expectSameImage(const Image& a, const Image& b) {
     ASSERT_EQ(a.rgb.size(), b.rgb.size());
     EXPECT_TRUE(a.rgb == b.rgb) << "the images differ";
+}
+
+/// Embree reads the vertices in place only where the positions have a spare vertex of capacity:
+/// the loader gives them one, and so does the Renderer to a Scene copied without it (Python).
+TEST_F(RendererTest, SceneKeepsTheVertexPaddingEmbreeShares) {
+    const Scene loaded = loadScene(path("scene.xml"));
+    EXPECT_TRUE(sharesVertexArray(loaded.positions));
+    Scene copy = loaded;
+    copy.positions = std::vector<Vec3f>(loaded.positions.begin(), loaded.positions.end());
+    RenderRequest request = passes(1);
+    request.device = "cpu";
+    request.accel = AccelKind::Embree;
+    const Renderer r(std::move(copy), request);
+    EXPECT_TRUE(sharesVertexArray(r.scene().positions));
+    EXPECT_TRUE(r.scene().positions == loaded.positions);
 }
 
 TEST_F(RendererTest, ResumedRendersEndWithTheUninterruptedImage) {

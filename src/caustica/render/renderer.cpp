@@ -83,6 +83,7 @@ Renderer::Renderer(Scene scene, const RenderRequest& request, const CheckpointHe
                    Communicator& comm)
     : scene_(std::make_unique<Scene>(std::move(scene))), comm_(&comm) {
     Scene& s = *scene_;
+    reserveVertexPadding(s);  // a copied Scene (the Python module's) has none: Embree then shares
     if (request.resolution) applyResolution(s, request.resolution->first, request.resolution->second);
     applyStereo(s, request.stereo);  // after the resolution: the rig doubles the film's width
     integrator_ = request.integrator.empty() ? s.integrator.type : request.integrator;

@@ -28,6 +28,12 @@
 #else
 #define CA_BVH_INLINE inline
 #endif
+// The same for a host lambda (written between its parameter list and its body).
+#if defined(__GNUC__) && !defined(__CUDACC__)
+#define CA_BVH_LAMBDA_INLINE __attribute__((always_inline))
+#else
+#define CA_BVH_LAMBDA_INLINE
+#endif
 
 namespace caustica {
 

@@ -2,7 +2,7 @@
 //   CA_BVH_INLINE  CA_HD_INLINE with inlining forced on the host as well
 //   Float4         four floats: an SSE register on the host, a plain array in GPU code (and on
 //                  hosts without SSE2), where the loops become scalar code
-//   lowestBit      index of the lowest set bit of a non-zero mask
+//   lowestBit      index of the lowest set bit of a non-zero mask (highestBit: the highest)
 // Float4's operations round exactly like the scalar expressions they stand for (min/max follow
 // caustica::min/max, including which operand a NaN yields), so SSE and scalar traversals give
 // bit-identical results.
@@ -28,6 +28,12 @@
 #else
 #define CA_BVH_INLINE inline
 #endif
+// The same for a host lambda (written between its parameter list and its body).
+#if defined(__GNUC__) && !defined(__CUDACC__)
+#define CA_BVH_LAMBDA_INLINE __attribute__((always_inline))
+#else
+#define CA_BVH_LAMBDA_INLINE
+#endif
 
 namespace caustica {
 
@@ -42,6 +48,22 @@ CA_BVH_INLINE int lowestBit(uint32_t mask) {
     while (!(mask & 1u)) {
         mask >>= 1;
         ++k;
+    }
+    return k;
+#endif
+}
+
+/// Index of the highest set bit of `mask` (not 0).
+CA_BVH_INLINE int highestBit(uint32_t mask) {
+#if defined(__CUDA_ARCH__)
+    return 31 - __clz(int(mask));
+#elif defined(__GNUC__)
+    return 31 - __builtin_clz(mask);
+#else
+    int k = 31;
+    while (!(mask & 0x80000000u)) {
+        mask <<= 1;
+        --k;
     }
     return k;
 #endif

@@ -153,6 +153,7 @@ public:
         fixed_.scale = flux > 0 && std::isfinite(flux) ? 4294967296.0 / double(flux) : 1.0;
         const Bounds3f box = scene.bounds();
         boxLo_ = box.empty() ? Vec3f(0) : box.lo;
+        emitterBoxes_ = buildEmitterBoxes(scene);
         const Vec3f extent = box.empty() ? Vec3f(1) : box.diagonal();
         boxInvExtent_ = Vec3f(extent.x > 0 ? 1 / extent.x : 1, extent.y > 0 ? 1 / extent.y : 1,
                               extent.z > 0 ? 1 / extent.z : 1);
@@ -286,8 +287,8 @@ private:
         sampling.radiance = radiance;
         const SceneView& view = scene_.view();
         scene_.visit(Exec{}, [&](const auto& intersector) {
-            sppm_detail::eyePass(Exec{}, view, intersector, settings_.path, settings_.roughnessThreshold, seed_,
-                                 sampling, width_, n, stats_buf_.data(), points_.data(), flags_.data(),
+            sppm_detail::eyePass(Exec{}, view, intersector, settings_.path, settings_.roughnessThreshold,
+                                 emitterBoxes_, seed_, sampling, width_, n, stats_buf_.data(), points_.data(), flags_.data(),
                                  eyeRays_.data());
         });
         stats_.rays += reduceSum(Exec::device(), Span<const uint32_t>(eyeRays_.data(), n));
@@ -440,6 +441,7 @@ private:
     uint64_t seed_;
     SppmFixedPoint fixed_;
     Vec3f boxLo_, boxInvExtent_;
+    EmitterBoxes emitterBoxes_;  // the eye pass's emission check (sppmEyePath)
     Buffer<SppmPixel> stats_buf_;
     Buffer<SppmVisiblePoint> points_;
     Buffer<uint32_t> flags_, list_, keys_, eyeRays_;

@@ -33,6 +33,7 @@
 #include "caustica/integrators/sppm/sppm_settings.h"
 #include "caustica/scene/bsdf.h"
 #include "caustica/scene/camera.h"
+#include "caustica/scene/emitter_boxes.h"
 #include "caustica/util/rng.h"
 
 namespace caustica {
@@ -106,11 +107,13 @@ CA_HD_INLINE uint32_t sppmMaxDepth(const PathSettings& settings, uint32_t cap) {
 /// The eye path of one pixel: Ld (returned) and the visible point (`hasPoint`). `cap` bounds the
 /// segments traced when max_depth is unbounded. Uses the path tracer's shadeHit for every vertex
 /// (emission, NEE + MIS, BSDF sampling, roulette), so no light-transport rule is restated here.
-/// `specularBelow`: the roughness threshold of isSpecularBsdf.
+/// `specularBelow`: the roughness threshold of isSpecularBsdf. `emitters`: the BSDF sample at the
+/// visible point is traced only when it may reach an emitter (emitter_boxes.h; a ray that passes
+/// no emitter's box would find no emission, so the image is the same).
 template <class Intersector, class Sampler>
 CA_HD Spectrum sppmEyePath(const SceneView& scene, const Intersector& accel, Sampler& sampler, const Ray& cameraRay,
-                           const PathSettings& settings, uint32_t cap, Float specularBelow, SppmVisiblePoint& vp,
-                           bool& hasPoint, uint32_t& rays) {
+                           const PathSettings& settings, uint32_t cap, Float specularBelow,
+                           const EmitterBoxes& emitters, SppmVisiblePoint& vp, bool& hasPoint, uint32_t& rays) {
     hasPoint = false;
     PathSettings bounded = settings;
     if (bounded.maxDepth < 0) bounded.maxDepth = int(cap);
@@ -148,7 +151,7 @@ CA_HD Spectrum sppmEyePath(const SceneView& scene, const Intersector& accel, Sam
             vp.bsdf = bsdf;
             vp.depth = depthHere;
             hasPoint = !betaHere.isBlack();
-            if (alive) {
+            if (alive && emitters.mayHitEmitter(path.ray)) {
                 Hit next;
                 ++rays;
                 PathSettings emissionOnly = bounded;

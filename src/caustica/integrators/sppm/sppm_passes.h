@@ -27,7 +27,7 @@ struct EyeSampling {
 
 template <class Exec, class Intersector>
 void eyePass(Exec exec, const SceneView& view, const Intersector& accel, PathSettings path, Float specularBelow,
-             uint64_t seed, EyeSampling sampling, int width, size_t entries, SppmPixel* stats,
+             EmitterBoxes emitters, uint64_t seed, EyeSampling sampling, int width, size_t entries, SppmPixel* stats,
              SppmVisiblePoint* points, uint32_t* flags, uint32_t* rays) {
     launch(
         exec, "sppm.eye", entries,
@@ -39,7 +39,7 @@ void eyePass(Exec exec, const SceneView& view, const Intersector& accel, PathSet
             bool has = false;
             uint32_t count = 0;
             const Spectrum L = sppmEyePath(view, accel, c.sampler, c.ray, path, uint32_t(kSppmDepthCap),
-                                           specularBelow, vp, has, count);
+                                           specularBelow, emitters, vp, has, count);
             if (sampling.radiance)
                 sampling.radiance[s] = L;
             else if (sampling.addLd)

@@ -12,9 +12,12 @@ mutations per pixel over twice the pixels. So extra = t_stereo / t_mono - 1 at e
   bench/stereo_cost.py scenes/cornell-water/scene.xml --res 160x160 --repeat 3 --csv out/stereo.csv \\
       --case sppm:--spp=16 --case path:--spp=16 --case mlt:--spp=16
 
-Each case is INTEGRATOR[:ARG=VALUE,...]; the best of --repeat runs (mono and stereo interleaved)
-is kept per row, as render wall seconds and as CPU seconds of the process (load, BVH build and
-writing included; with --threads 1 the robust figure on a shared machine).
+Each case is INTEGRATOR[:ARG=VALUE,...]; the best of --repeat runs (mono and stereo interleaved,
+in the order A B B A so that a drift of the machine's speed hits both alike) is kept per row, as
+render wall seconds and as CPU seconds of the process (load, BVH build and writing included; with
+--threads 1 the robust figure on a shared machine). The row also gives the median over the
+repeats of each neighbouring pair's stereo / mono ratio: on a VM whose speed drifts by 10% from
+one run to the next, best-of-N of each side alone can land on different spells.
 """
 import argparse
 import json
@@ -22,6 +25,7 @@ import os
 import resource
 import subprocess
 import sys
+import statistics
 import tempfile
 
 from csv_out import write_csv
@@ -67,16 +71,20 @@ def main():
             k, _, v = item.partition('=')
             extra += [k, v] if v else [k]
         runs = {False: [], True: []}
-        for _ in range(a.repeat):  # interleaved, so that a busy spell hits both
-            for stereo in (False, True):
+        for i in range(a.repeat):  # interleaved A B B A, so that a busy spell hits both
+            for stereo in ((False, True) if i % 2 == 0 else (True, False)):
                 runs[stereo].append(render_seconds(a.binary, a.scene, a.res, integrator, extra, stereo, a.threads))
+        pair_wall = statistics.median(s[0] / m[0] for m, s in zip(runs[False], runs[True]))
+        pair_cpu = statistics.median(s[1] / m[1] for m, s in zip(runs[False], runs[True]))
         mono_wall, mono_cpu = min(r[0] for r in runs[False]), min(r[1] for r in runs[False])
         both_wall, both_cpu = min(r[0] for r in runs[True]), min(r[1] for r in runs[True])
         rows.append({'integrator': integrator, 'args': ' '.join(extra), 'eye_res': a.res,
                      'mono_wall_s': round(mono_wall, 3), 'stereo_wall_s': round(both_wall, 3),
                      'mono_cpu_s': round(mono_cpu, 3), 'stereo_cpu_s': round(both_cpu, 3),
                      'second_eye_extra_cpu': round(both_cpu / mono_cpu - 1, 3),
-                     'second_eye_extra_wall': round(both_wall / mono_wall - 1, 3)})
+                     'second_eye_extra_wall': round(both_wall / mono_wall - 1, 3),
+                     'repeats': a.repeat, 'median_pair_extra_cpu': round(pair_cpu - 1, 3),
+                     'median_pair_extra_wall': round(pair_wall - 1, 3)})
         print(rows[-1], flush=True)
     write_csv(a.csv, rows)
 

@@ -24,9 +24,6 @@ struct Vec3x4 {
 inline Vec3x4 broadcast3(Vec3f v) {
     return {_mm_set1_ps(v.x), _mm_set1_ps(v.y), _mm_set1_ps(v.z)};
 }
-inline Vec3x4 operator-(Vec3x4 a, Vec3x4 b) {
-    return {_mm_sub_ps(a.x, b.x), _mm_sub_ps(a.y, b.y), _mm_sub_ps(a.z, b.z)};
-}
 
 /// Four triangles in lanes: their vertices and the primitive ids.
 struct Triangle4 {

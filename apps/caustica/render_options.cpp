@@ -47,7 +47,7 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
                    "CUDA backend and a GPU is present, else the CPU)")->check(CLI::IsMember({"cpu", "cuda", "auto"}));
     cmd.add_option("--gpu", r.gpu, "The GPU to render on with --device cuda (default: under mpirun/srun the rank's "
                    "local rank modulo the host's GPUs, one GPU per rank; else GPU 0)")->check(CLI::Range(0, 1023));
-    cmd.add_option("--gpu-mode", r.gpuMode, "Path tracer execution on the GPU: megakernel or wavefront")
+    cmd.add_option("--gpu-mode", r.gpuMode, "Path tracer execution on the GPU: wavefront (default) or megakernel (same image)")
         ->check(CLI::IsMember({"megakernel", "wavefront"}));
     cmd.add_option("--aov", r.aovs, "AOVs written as layers of the .exr output, Mitsuba's aovs list NAME:TYPE,... "
                    "(types: depth, position, uv, geo_normal, sh_normal, albedo, prim_index, shape_index, "

@@ -33,10 +33,13 @@ struct RenderRequest {
     /// CPU path tracer: wavefront | megakernel (the same image). The wavefront is the default: on
     /// every bundled scene it is at least as fast as the megakernel at 1 and 2 threads with Embree
     /// (the default accel; with the own BVH, packets of one ray, the two tie), and with AOVs it
-    /// shares its camera rays' hits as the megakernel does (docs/PERFORMANCE.md, 2026-11-27). The megakernel stays the GPU's default (gpuMode): the
-    /// GPU comparison is unmeasured.
+    /// shares its camera rays' hits as the megakernel does (docs/PERFORMANCE.md, 2026-11-27).
     std::string pathMode = "wavefront";
-    std::string gpuMode = "megakernel";   // GPU path tracer: megakernel | wavefront
+    /// GPU path tracer: wavefront | megakernel (the same image up to rounding). The wavefront is
+    /// the default: on an H200 it drew 1.31x the megakernel's samples/s on cornell-box and 2.09x
+    /// on cornell-water, and rendered a 1280x720 stereo pair in half the time (docs/PERFORMANCE.md,
+    /// "the first run on a GPU").
+    std::string gpuMode = "wavefront";
     /// The integrator's parameters set on the command line (integrator_registry.h lists each
     /// integrator's options); they take the place of the scene's of the same name.
     std::vector<IntegratorParam> integratorParams;

@@ -70,6 +70,41 @@ CA_HD_INLINE void sphereInteraction(const Sphere& s, bool flip, SurfaceInteracti
     si.ng = si.ns = n;
 }
 
+/// A mesh triangle's point at barycentrics (b1, b2) and its normals, as every hit on it and every
+/// light sample on it sees them: the vertices, the point on the surface, the unflipped face normal,
+/// and ng / ns before flip_normals (for meshes with normals Mitsuba orients ng by ns).
+struct TrianglePoint {
+    Vec3u tri;
+    Vec3f p0, p1, p2;
+    Float b0;
+    Vec3f p;
+    Vec3f faceNormal;  // unflipped
+    Vec3f ng, ns;      // flip_normals not applied
+};
+
+CA_HD_INLINE TrianglePoint trianglePoint(const SceneView& scene, const Shape& shape, uint32_t primId, Float b1,
+                                         Float b2) {
+    TrianglePoint t;
+    t.tri = scene.triangles[primId];
+    t.p0 = scene.positions[t.tri.x];
+    t.p1 = scene.positions[t.tri.y];
+    t.p2 = scene.positions[t.tri.z];
+    t.b0 = 1 - b1 - b2;
+    t.p = t.p0 * t.b0 + t.p1 * b1 + t.p2 * b2;  // on the surface, not ray-distance rounded
+    t.faceNormal = normalize(cross(t.p1 - t.p0, t.p2 - t.p0));
+    t.ng = t.faceNormal;
+    t.ns = t.ng;
+    if (shape.hasNormals) {
+        const Vec3f n = scene.normals[t.tri.x] * t.b0 + scene.normals[t.tri.y] * b1 + scene.normals[t.tri.z] * b2;
+        if (lengthSquared(n) > 0) {
+            t.ns = normalize(n);
+            // Mitsuba orients the geometric normal by the shading normal for meshes with normals.
+            t.ng = faceForward(t.ng, t.ns);
+        }
+    }
+    return t;
+}
+
 /// Fills the interaction for a valid hit of `ray`.
 CA_HD_INLINE SurfaceInteraction computeInteraction(const SceneView& scene, const Ray& ray, const Hit& hit) {
     SurfaceInteraction si;
@@ -77,23 +112,16 @@ CA_HD_INLINE SurfaceInteraction computeInteraction(const SceneView& scene, const
     si.textures = scene.textureView();
     si.p = ray.o + ray.d * hit.t;
     if (hit.primId < scene.numTriangles()) {
-        const Vec3u tri = scene.triangles[hit.primId];
-        const Vec3f p0 = scene.positions[tri.x], p1 = scene.positions[tri.y], p2 = scene.positions[tri.z];
-        const Float b0 = 1 - hit.b1 - hit.b2;
-        si.p = p0 * b0 + p1 * hit.b1 + p2 * hit.b2;  // on the surface, not ray-distance rounded
         si.shape = scene.triangleShape[hit.primId];
         const Shape& shape = scene.shapes[si.shape];
-        const Vec3f faceNormal = normalize(cross(p1 - p0, p2 - p0));  // unflipped
-        si.ng = faceNormal;
-        si.ns = si.ng;
-        if (shape.hasNormals) {
-            Vec3f n = scene.normals[tri.x] * b0 + scene.normals[tri.y] * hit.b1 + scene.normals[tri.z] * hit.b2;
-            if (lengthSquared(n) > 0) {
-                si.ns = normalize(n);
-                // Mitsuba orients the geometric normal by the shading normal for meshes with normals.
-                si.ng = faceForward(si.ng, si.ns);
-            }
-        }
+        const TrianglePoint t = trianglePoint(scene, shape, hit.primId, hit.b1, hit.b2);
+        const Vec3u tri = t.tri;
+        const Vec3f p0 = t.p0, p1 = t.p1, p2 = t.p2;
+        const Float b0 = t.b0;
+        const Vec3f faceNormal = t.faceNormal;
+        si.p = t.p;
+        si.ng = t.ng;
+        si.ns = t.ns;
         // Mitsuba's mesh: dp/du, dp/dv from the uv parameterisation, else (or when the uv
         // triangle is degenerate) coordinate_system of the unflipped face normal (built only then).
         bool uvPartials = false;

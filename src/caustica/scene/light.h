@@ -108,15 +108,11 @@ CA_HD_INLINE bool sampleAreaLightPosition(const SceneView& scene, const Light& l
         const Float lo = tri > 0 ? cdf[tri - 1] : 0.0f;
         const Float ux = min((u.x - lo) / triPdf, kOneMinusEpsilon);
         const Vec2f b = sampleUniformTriangle(Vec2f(max(ux, Float(0)), u.y));
-        Hit hit;
-        hit.t = 0;
-        hit.primId = shape.primOffset + tri;
-        hit.b1 = b.x;
-        hit.b2 = b.y;
-        // The same point and front normal as a ray hit would produce (flip_normals included).
-        const SurfaceInteraction si = computeInteraction(scene, Ray{Vec3f(0), Vec3f(0), 0}, hit);
-        p = si.p;
-        n = si.ng;
+        // The same point and front normal as a ray hit there produces (flip_normals included),
+        // without the hit's uv and partials.
+        const TrianglePoint t = trianglePoint(scene, shape, shape.primOffset + tri, b.x, b.y);
+        p = t.p;
+        n = shape.flipNormals ? -t.ng : t.ng;
         return true;
     }
     if (shape.type == ShapeType::Cylinder) {

@@ -23,9 +23,11 @@
 // same sets (point_set.h), so the totals of one set and query must agree between all structures
 // (AgreementCheck; the programs exit with status 1 when they do not).
 //
-// Kernel lambdas are nvcc extended lambdas: they live in functions of a named namespace (not an
-// unnamed one), and the per-query code is a functor, not a generic lambda.
+// The query kernel is an nvcc extended lambda: it lives in a function template of a named
+// namespace (not an unnamed one), and the query type is a template parameter (if constexpr).
 #pragma once
+
+#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <chrono>
@@ -33,6 +35,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
+#include <exception>
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -160,6 +163,21 @@ inline Options parseOptions(const Program& program, int argc, char** argv) {
         }
     return o;
 }
+
+/// --threads as TBB's limit for as long as this lives (none for 0); count(): the threads the
+/// CPU's kernels may use.
+class CpuThreads {
+public:
+    explicit CpuThreads(int threads) {
+        if (threads > 0) limit_.emplace(tbb::global_control::max_allowed_parallelism, size_t(threads));
+    }
+    int count() const {
+        return int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+    }
+
+private:
+    std::optional<tbb::global_control> limit_;
+};
 
 inline std::string todaysCsv(const Program& program) {
     const std::time_t now = std::time(nullptr);
@@ -484,69 +502,43 @@ Totals totalsOf(const QueryOutputs<Exec>& out) {
     return t;
 }
 
-/// The kernels' query bodies: query(i, add) calls add(j) for every result j of query i.
-template <class View>
-struct WithinQuery {
-    View view;
-    const Vec3f* centers;
-    const Float* radii;
-    template <class Add>
-    CA_HD void operator()(size_t i, Add& add) const {
-        view.forEachPointWithin(centers[i], radii[i], add);
-    }
+/// The launch names of the query kernels (KernelStats), in the order of Query.
+inline constexpr const char* kQueryKernelNames[] = {"bench.within", "bench.knn16",
+                                                    "bench.covering", "bench.segment"};
+
+/// The query arrays of a PreparedSet (device pointers) and the segments' common length.
+struct QueryArrays {
+    const Vec3f* centers;     // ball centres, covered points or segment origins
+    const Float* radii;       // points sets: each query's radius
+    const Vec3f* directions;  // spheres sets: each segment's unit direction
+    Float segmentLength;
 };
 
-/// The 16 nearest within twice the query's radius (a fixed local array of 16).
-template <class View>
-struct Knn16Query {
-    View view;
-    const Vec3f* centers;
-    const Float* radii;
-    template <class Add>
-    CA_HD void operator()(size_t i, Add& add) const {
-        uint32_t nearest[16], count = 0;
-        view.kNearest(centers[i], 16, 2 * radii[i], nearest, count);
-        for (uint32_t k = 0; k < count; ++k) add(nearest[k]);
-    }
-};
-
-template <class View>
-struct CoveringQuery {
-    View view;
-    const Vec3f* centers;
-    template <class Add>
-    CA_HD void operator()(size_t i, Add& add) const {
-        view.forEachSphereCovering(centers[i], add);
-    }
-};
-
-template <class View>
-struct SegmentQuery {
-    View view;
-    const Vec3f* origins;
-    const Vec3f* directions;
-    Float length;
-    template <class Add>
-    CA_HD void operator()(size_t i, Add& add) const {
-        view.forEachSphereOnSegment(origins[i], directions[i], length, add);
-    }
-};
-
-/// Runs query(i, add) for every query i (one launch on Exec's device): `add(j)` for each result
-/// j counts it and adds j to the query's index sum, written to `out` when the query is done.
-template <class Exec, class QueryFn>
-void launchQueries(Exec exec, const char* name, size_t n, QueryOutputs<Exec>& out,
-                   const QueryFn& query) {
+/// Runs every query of type kQuery on the view (one launch on Exec's device): each query counts
+/// its results and sums their indices into `out`. knn16: a fixed local array of 16 indices.
+template <Query kQuery, class Exec, class View>
+void launchQueries(Exec exec, const View& view, const QueryArrays& a, size_t n,
+                   QueryOutputs<Exec>& out) {
     uint32_t* counts = out.counts.data();
     uint64_t* sums = out.indexSums.data();
-    launch(exec, name, n, [=] CA_HD(size_t i) {
+    launch(exec, kQueryKernelNames[int(kQuery)], n, [=] CA_HD(size_t i) {
         uint32_t count = 0;
         uint64_t sum = 0;
         auto add = [&](uint32_t j) {
             ++count;
             sum += j;
         };
-        query(i, add);
+        if constexpr (kQuery == Query::Within) {
+            view.forEachPointWithin(a.centers[i], a.radii[i], add);
+        } else if constexpr (kQuery == Query::Knn16) {
+            uint32_t nearest[16], found = 0;
+            view.kNearest(a.centers[i], 16, 2 * a.radii[i], nearest, found);
+            for (uint32_t k = 0; k < found; ++k) add(nearest[k]);
+        } else if constexpr (kQuery == Query::Covering) {
+            view.forEachSphereCovering(a.centers[i], add);
+        } else {
+            view.forEachSphereOnSegment(a.centers[i], a.directions[i], a.segmentLength, add);
+        }
         counts[i] = count;
         sums[i] = sum;
     });
@@ -587,25 +579,19 @@ inline int warmUpRuns(GpuExec) { return 1; }
 template <class Exec, class View>
 double runQueries(Exec exec, const View& view, Query q, const PreparedSet<Exec>& p,
                   QueryOutputs<Exec>& out) {
-    const Vec3f* centers = p.queries.data();
-    const Float* radii = p.queryRadii.data();
+    const QueryArrays a{p.queries.data(), p.queryRadii.data(), p.directions.data(),
+                        p.set.segmentLength};
     const size_t n = p.queries.size();
     return timedMs(exec, [&] {
         switch (q) {
             case Query::Within:
-                launchQueries(exec, "bench.within", n, out, WithinQuery<View>{view, centers, radii});
-                break;
+                return launchQueries<Query::Within>(exec, view, a, n, out);
             case Query::Knn16:
-                launchQueries(exec, "bench.knn16", n, out, Knn16Query<View>{view, centers, radii});
-                break;
+                return launchQueries<Query::Knn16>(exec, view, a, n, out);
             case Query::Covering:
-                launchQueries(exec, "bench.covering", n, out, CoveringQuery<View>{view, centers});
-                break;
+                return launchQueries<Query::Covering>(exec, view, a, n, out);
             case Query::Segment:
-                launchQueries(exec, "bench.segment", n, out,
-                              SegmentQuery<View>{view, centers, p.directions.data(),
-                                                 p.set.segmentLength});
-                break;
+                return launchQueries<Query::Segment>(exec, view, a, n, out);
         }
     });
 }
@@ -783,6 +769,28 @@ void measureSet(Exec exec, const BenchSet& s, Context& c) {
         for (const auto& v : variants)
             if (selected(c.options.structures, v.name)) measure(exec, v, prepared, c);
     });
+}
+
+/// A program's run: opens the CSV (default todaysCsv; `device`: Report's last column), prints
+/// `heading`, calls measureSet(set, context) for every selected set, then prints where the CSV
+/// went and the agreement's verdict. Returns the exit status: 0, or 1 after a disagreement or an
+/// error (printed). `threads`: the rows' threads column.
+template <class MeasureSet>
+int runBench(const Program& program, const Options& o, int threads, const std::string& device,
+             const std::string& heading, MeasureSet&& measureSet) {
+    try {
+        Report report(o.csv.empty() ? todaysCsv(program) : o.csv, device);
+        AgreementCheck agreement;
+        Context context{o, threads, report, agreement};
+        std::printf("%s\n", heading.c_str());
+        const auto start = Clock::now();
+        forEachSet(o, [&](const BenchSet& s) { measureSet(s, context); });
+        std::printf("\nwrote %s (%.0f s)\n", report.path().c_str(), msSince(start) * 1e-3);
+        return agreement.summarize() ? 0 : 1;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "%s: %s\n", program.name, e.what());
+        return 1;
+    }
 }
 
 }  // namespace caustica::spatial_bench

@@ -514,8 +514,25 @@ struct QueryArrays {
     Float segmentLength;
 };
 
+/// Query i of type kQuery on the view: add(j) for every result j. knn16: a fixed local array of
+/// 16 indices.
+template <Query kQuery, class View, class Add>
+CA_HD void runQuery(const View& view, const QueryArrays& a, size_t i, Add& add) {
+    if constexpr (kQuery == Query::Within) {
+        view.forEachPointWithin(a.centers[i], a.radii[i], add);
+    } else if constexpr (kQuery == Query::Knn16) {
+        uint32_t nearest[16], found = 0;
+        view.kNearest(a.centers[i], 16, 2 * a.radii[i], nearest, found);
+        for (uint32_t k = 0; k < found; ++k) add(nearest[k]);
+    } else if constexpr (kQuery == Query::Covering) {
+        view.forEachSphereCovering(a.centers[i], add);
+    } else {
+        view.forEachSphereOnSegment(a.centers[i], a.directions[i], a.segmentLength, add);
+    }
+}
+
 /// Runs every query of type kQuery on the view (one launch on Exec's device): each query counts
-/// its results and sums their indices into `out`. knn16: a fixed local array of 16 indices.
+/// its results and sums their indices into `out`.
 template <Query kQuery, class Exec, class View>
 void launchQueries(Exec exec, const View& view, const QueryArrays& a, size_t n,
                    QueryOutputs<Exec>& out) {
@@ -528,17 +545,7 @@ void launchQueries(Exec exec, const View& view, const QueryArrays& a, size_t n,
             ++count;
             sum += j;
         };
-        if constexpr (kQuery == Query::Within) {
-            view.forEachPointWithin(a.centers[i], a.radii[i], add);
-        } else if constexpr (kQuery == Query::Knn16) {
-            uint32_t nearest[16], found = 0;
-            view.kNearest(a.centers[i], 16, 2 * a.radii[i], nearest, found);
-            for (uint32_t k = 0; k < found; ++k) add(nearest[k]);
-        } else if constexpr (kQuery == Query::Covering) {
-            view.forEachSphereCovering(a.centers[i], add);
-        } else {
-            view.forEachSphereOnSegment(a.centers[i], a.directions[i], a.segmentLength, add);
-        }
+        runQuery<kQuery>(view, a, i, add);
         counts[i] = count;
         sums[i] = sum;
     });

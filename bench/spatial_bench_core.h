@@ -670,14 +670,35 @@ public:
         const std::string key = set + " " + queryName(q);
         auto [it, first] = reference_.try_emplace(key, structure, t);
         if (first || it->second.second == t) return;
-        const auto& [refName, ref] = it->second;
-        std::printf(
-            "\n!!!!! ERROR: %s: %s returned %llu results (index sum %llu), %s returned %llu (index "
-            "sum %llu): the structures disagree !!!!!\n\n",
-            key.c_str(), structure.c_str(), (unsigned long long)t.results,
-            (unsigned long long)t.indexSum, refName.c_str(), (unsigned long long)ref.results,
-            (unsigned long long)ref.indexSum);
-        ++failures_;
+        disagree(key, structure, t, it->second, "the structures disagree");
+    }
+    /// Compares t (of `structure`, measured apart from the others: on the other device) with the
+    /// reference of (set, q), tolerating up to `allowedResults` differing results (and index
+    /// sums apart by that many indices below `points`); prints the outcome. A larger difference
+    /// is a disagreement. Without a reference (no structure measured) it does nothing.
+    void checkNear(const std::string& set, Query q, const std::string& structure, const Totals& t,
+                   uint64_t allowedResults, uint64_t points) {
+        const std::string key = set + " " + queryName(q);
+        const auto it = reference_.find(key);
+        if (it == reference_.end()) return;
+        const Totals& ref = it->second.second;
+        const uint64_t results = absDiff(t.results, ref.results);
+        const uint64_t indexSum = absDiff(t.indexSum, ref.indexSum);
+        if (results > allowedResults || indexSum > allowedResults * points) {
+            disagree(key, structure, t, it->second, "beyond the tolerated rounding");
+            return;
+        }
+        const char* refName = it->second.first.c_str();
+        if (results == 0 && indexSum == 0)
+            std::printf("%s: %s (%llu results) returns the same totals as %s\n", key.c_str(),
+                        structure.c_str(), (unsigned long long)t.results, refName);
+        else
+            std::printf(
+                "%s: %s (%llu results) differs from %s by %llu result(s) and %llu in the index "
+                "sum: rounding (up to %llu results tolerated)\n",
+                key.c_str(), structure.c_str(), (unsigned long long)t.results, refName,
+                (unsigned long long)results, (unsigned long long)indexSum,
+                (unsigned long long)allowedResults);
     }
     int failures() const { return failures_; }
 
@@ -694,7 +715,22 @@ public:
     }
 
 private:
-    std::map<std::string, std::pair<std::string, Totals>> reference_;
+    using Reference = std::pair<std::string, Totals>;  // the first structure measured, its totals
+
+    static uint64_t absDiff(uint64_t a, uint64_t b) { return a > b ? a - b : b - a; }
+    void disagree(const std::string& key, const std::string& structure, const Totals& t,
+                  const Reference& reference, const char* verdict) {
+        const auto& [refName, ref] = reference;
+        std::printf(
+            "\n!!!!! ERROR: %s: %s returned %llu results (index sum %llu), %s returned %llu (index "
+            "sum %llu): %s !!!!!\n\n",
+            key.c_str(), structure.c_str(), (unsigned long long)t.results,
+            (unsigned long long)t.indexSum, refName.c_str(), (unsigned long long)ref.results,
+            (unsigned long long)ref.indexSum, verdict);
+        ++failures_;
+    }
+
+    std::map<std::string, Reference> reference_;
     int failures_ = 0;
 };
 

@@ -21,8 +21,10 @@
 // CSV (default bench/results/spatial-gpu-YYYY-MM-DD.csv): spatial_bench's columns with `threads`
 // 0 (the queries ran on the GPU) and a last column `device` (the GPU's name).
 // The table starts with a "== " heading (scripts/gpu-check prints a benchmark's log from there).
-// The run without arguments (what gpu-check does) takes about a minute on a 16-core host with an
-// H200, most of it the CPU SPPM renders; --sets uniform --scale 0.1 is a smoke run of seconds.
+// The run without arguments (what gpu-check does) is the full size, like spatial_bench's:
+// estimated (not yet measured) at 20-40 s on a 16-core host with an H200, most of it the CPU SPPM
+// renders (about 80 CPU-seconds: 40 s on 2 cores) and the GPU structures' 4 builds and 4 runs of
+// each query; --sets uniform --scale 0.1 --repeat 1 is a smoke run of seconds.
 // Without a CUDA GPU it prints why and exits 0, measuring nothing.
 #include <algorithm>
 #include <cstdio>

@@ -157,7 +157,7 @@ CA_HD bool searchRings(const Grid& g, Vec3f center, int32_t maxRing, Float cellS
                          min(g.lastCell(2), g.cellOnAxis(2, center.z + reach))};
     // Candidates farther than the heap's limit are dropped before the hash grid's cell check.
     auto closeEnough = [&](uint32_t i) {
-        return !(lengthSquared(g.points.positions[i] - center) > heap.limit());
+        return !(distanceSquaredUnfused(g.points.positions[i], center) > heap.limit());
     };
     auto offer = [&](uint32_t i) { heap.consider(i, g.points.positions[i], center); };
     for (int32_t m = 0; m <= maxRing; ++m) {

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 
+#include "caustica/spatial/unfused.h"
 #include "caustica/util/math.h"
 
 namespace caustica {
@@ -34,7 +35,7 @@ public:
     CA_HD NearestHeap(uint32_t k, Float maxRadius)
         : capacity_(k < kMaxNeighbors ? k : kMaxNeighbors),
           maxRadius_(maxRadius),
-          maxDistanceSquared_(maxRadius * maxRadius) {}
+          maxDistanceSquared_(mulUnfused(maxRadius, maxRadius)) {}
 
     /// How many neighbours the query keeps (0: nothing to search).
     CA_HD uint32_t capacity() const { return capacity_; }
@@ -52,7 +53,7 @@ public:
     /// Offers point i at position p: kept when |p - center|^2 <= maxRadius^2 (inBall's test, the
     /// same float operations) and it is among the best k so far.
     CA_HD void consider(uint32_t i, Vec3f p, Vec3f center) {
-        const Float d2 = lengthSquared(p - center);
+        const Float d2 = distanceSquaredUnfused(p, center);
         if (!(d2 <= maxDistanceSquared_)) return;
         const Neighbor c{d2, i};
         if (size_ < capacity_) {

@@ -11,6 +11,7 @@
 #include <limits>
 
 #include "caustica/spatial/k_nearest.h"
+#include "caustica/spatial/unfused.h"
 #include "caustica/util/math.h"
 #include "caustica/util/span.h"
 
@@ -31,10 +32,11 @@ struct PointSet {
     CA_HD Float radiusOf(size_t i) const { return radii.empty() ? radius : radii[i]; }
 };
 
-/// True when p lies in the closed ball of radius r around c: |p - c|^2 <= r^2 in float. The one
-/// predicate of every query, so that structures and brute force agree exactly.
+/// True when p lies in the closed ball of radius r around c: |p - c|^2 <= r^2 in float, without
+/// fused multiply-adds (unfused.h). The one predicate of every query, so that structures and
+/// brute force agree exactly, on the GPU too.
 CA_HD_INLINE bool inBall(Vec3f p, Vec3f c, Float r) {
-    return lengthSquared(p - c) <= r * r;
+    return distanceSquaredUnfused(p, c) <= mulUnfused(r, r);
 }
 
 /// How far beyond `r` a structure widens the box of cells it visits: the rounding of inBall can
@@ -59,7 +61,7 @@ struct Segment {
     Segment() = default;
     CA_HD Segment(Vec3f o, Vec3f d, Float tMax)
         : origin(o), dir(d), tEnd(tMax > 0 ? min(tMax, kInfinity) : Float(0)) {
-        dirLengthSquared = dot(d, d);
+        dirLengthSquared = dotUnfused(d, d);
         if (!(dirLengthSquared > 0 && dirLengthSquared <= kInfinity)) {
             dir = Vec3f(0);
             dirLengthSquared = 0;
@@ -86,18 +88,20 @@ struct Segment {
 
 /// The squared distance from p to the closest point of segment s, in float: the parameter of
 /// the projection, dot(p - o, d) / dot(d, d), clamped to [0, tEnd] (NaN to 0), then
-/// |(p - o) - d t|^2. The closest point is always on the segment, so rounding only moves it
+/// |(p - o) - d t|^2, without fused multiply-adds (unfused.h). The closest point is always on the segment, so rounding only moves it
 /// along the segment. The one predicate of forEachSphereOnSegment (as inBall is of the others).
 CA_HD_INLINE Float segmentDistanceSquared(Vec3f p, const Segment& s) {
     const Vec3f op = p - s.origin;
-    Float t = s.dirLengthSquared > 0 ? dot(op, s.dir) / s.dirLengthSquared : Float(0);
+    Float t = s.dirLengthSquared > 0 ? dotUnfused(op, s.dir) / s.dirLengthSquared : Float(0);
     t = t > 0 ? (t < s.tEnd ? t : s.tEnd) : Float(0);
-    return lengthSquared(op - s.dir * t);
+    const Vec3f along(mulUnfused(s.dir.x, t), mulUnfused(s.dir.y, t), mulUnfused(s.dir.z, t));
+    return distanceSquaredUnfused(op, along);
 }
 
-/// True when the sphere of radius r around p meets segment s: segmentDistanceSquared <= r^2.
+/// True when the sphere of radius r around p meets segment s: segmentDistanceSquared <= r^2
+/// (unfused, as inBall).
 CA_HD_INLINE bool sphereMeetsSegment(Vec3f p, Float r, const Segment& s) {
-    return segmentDistanceSquared(p, s) <= r * r;
+    return segmentDistanceSquared(p, s) <= mulUnfused(r, r);
 }
 
 /// An entry of a tree's segment walk: a node and the part [t0, t1] of the segment that can reach

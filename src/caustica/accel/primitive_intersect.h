@@ -13,6 +13,7 @@
 #include "caustica/scene/ray.h"
 #include "caustica/scene/scene.h"
 #include "caustica/util/math.h"
+#include "caustica/util/unfused.h"
 
 namespace caustica {
 
@@ -39,21 +40,14 @@ CA_BVH_INLINE WatertightRay makeWatertightRay(Vec3f d) {
 }
 
 namespace watertight_detail {
-/// a * b rounded on its own. Watertightness rests on a shared edge's function being the exact
-/// negation in its two triangles, so no product may be fused into a multiply-add: on the GPU the
-/// intrinsic forbids contraction; the host build targets baseline x86-64, which has no FMA (a
-/// build with -mfma would need -ffp-contract=off; the watertight and triangle4 tests would show it).
-CA_BVH_INLINE Float mulRounded(Float a, Float b) {
-#ifdef __CUDA_ARCH__
-    return __fmul_rn(a, b);
-#else
-    return a * b;
-#endif
-}
+// Watertightness rests on a shared edge's function being the exact negation in its two
+// triangles, so no product may be fused into a multiply-add: every product is mulUnfused
+// (util/unfused.h; a host build with -mfma would need -ffp-contract=off, which the watertight and
+// triangle4 tests would show).
 /// The 2D edge function px qy - py qx of the edge (p, q) in sheared space; (q, p) gives exactly
 /// its negation, as the two triangles of a shared edge evaluate it.
 CA_BVH_INLINE Float edgeFunction(Float px, Float py, Float qx, Float qy) {
-    return mulRounded(px, qy) - mulRounded(py, qx);
+    return mulUnfused(px, qy) - mulUnfused(py, qx);
 }
 /// The same in double precision, where the products are exact: its sign is exact, for edge
 /// functions that came out exactly 0 in float (the ray passes through an edge or vertex).
@@ -77,9 +71,9 @@ CA_BVH_INLINE bool intersectTriangleWith(const WatertightRay& r, Vec3f o, Float 
                                          Float& b2Out) {
     using namespace watertight_detail;
     const Vec3f a = p0 - o, b = p1 - o, c = p2 - o;
-    const Float ax = a[r.kx] - mulRounded(r.sx, a[r.kz]), ay = a[r.ky] - mulRounded(r.sy, a[r.kz]);
-    const Float bx = b[r.kx] - mulRounded(r.sx, b[r.kz]), by = b[r.ky] - mulRounded(r.sy, b[r.kz]);
-    const Float cx = c[r.kx] - mulRounded(r.sx, c[r.kz]), cy = c[r.ky] - mulRounded(r.sy, c[r.kz]);
+    const Float ax = a[r.kx] - mulUnfused(r.sx, a[r.kz]), ay = a[r.ky] - mulUnfused(r.sy, a[r.kz]);
+    const Float bx = b[r.kx] - mulUnfused(r.sx, b[r.kz]), by = b[r.ky] - mulUnfused(r.sy, b[r.kz]);
+    const Float cx = c[r.kx] - mulUnfused(r.sx, c[r.kz]), cy = c[r.ky] - mulUnfused(r.sy, c[r.kz]);
     Float u = edgeFunction(cx, cy, bx, by), v = edgeFunction(ax, ay, cx, cy),
           w = edgeFunction(bx, by, ax, ay);
     if ((u == 0) | (v == 0) | (w == 0)) {
@@ -90,8 +84,8 @@ CA_BVH_INLINE bool intersectTriangleWith(const WatertightRay& r, Vec3f o, Float 
     // One branch per stage (non-short-circuit |, &): data-dependent early exits mispredict.
     if (((u < 0) | (v < 0) | (w < 0)) & ((u > 0) | (v > 0) | (w > 0))) return false;
     const Float det = u + v + w;
-    const Float tNum = u * mulRounded(r.sz, a[r.kz]) + v * mulRounded(r.sz, b[r.kz]) +
-                       w * mulRounded(r.sz, c[r.kz]);
+    const Float tNum = u * mulUnfused(r.sz, a[r.kz]) + v * mulUnfused(r.sz, b[r.kz]) +
+                       w * mulUnfused(r.sz, c[r.kz]);
     // Signs flipped where det < 0, so that the tests below read as for det > 0. Every
     // comparison rejects NaNs.
     const bool flip = det < 0;

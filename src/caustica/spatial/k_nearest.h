@@ -6,7 +6,7 @@
 
 #include <cstdint>
 
-#include "caustica/spatial/unfused.h"
+#include "caustica/util/unfused.h"
 #include "caustica/util/math.h"
 
 namespace caustica {

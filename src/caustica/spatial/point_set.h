@@ -11,7 +11,7 @@
 #include <limits>
 
 #include "caustica/spatial/k_nearest.h"
-#include "caustica/spatial/unfused.h"
+#include "caustica/util/unfused.h"
 #include "caustica/util/math.h"
 #include "caustica/util/span.h"
 

@@ -21,10 +21,9 @@
 // CSV (default bench/results/spatial-gpu-YYYY-MM-DD.csv): spatial_bench's columns with `threads`
 // 0 (the queries ran on the GPU) and a last column `device` (the GPU's name).
 // The table starts with a "== " heading (scripts/gpu-check prints a benchmark's log from there).
-// The run without arguments (what gpu-check does) is the full size, like spatial_bench's:
-// estimated (not yet measured) at 20-40 s on a 16-core host with an H200, most of it the CPU SPPM
-// renders (about 80 CPU-seconds: 40 s on 2 cores) and the GPU structures' 4 builds and 4 runs of
-// each query; --sets uniform --scale 0.1 --repeat 1 is a smoke run of seconds.
+// The run without arguments (what gpu-check does) is the full size, like spatial_bench's: 13 s on
+// an H200 with a 16-core host (2026-11-27), most of it the CPU SPPM renders (about 80
+// CPU-seconds: 40 s on 2 cores); --sets uniform --scale 0.1 --repeat 1 is a smoke run of seconds.
 // Without a CUDA GPU it prints why and exits 0, measuring nothing.
 #include <algorithm>
 #include <cstdio>
@@ -38,12 +37,11 @@ using namespace caustica::spatial_bench;
 
 namespace {
 
-/// How far the GPU's totals may stray from the CPU's: nvcc contracts a * b + c into fused
-/// multiply-adds (the GPU drivers are compiled so, and so is this program), g++ for x86-64 does
-/// not, so a squared distance may round differently on the two devices and a point within an ulp
-/// or so of a ball's (or a sphere's, or a segment's) boundary be found on one and not on the
-/// other: about 1e-6 of the results. Tolerated: 1e-4 of them, at least 2; a structure that
-/// skips a cell or a node loses far more. Between the GPU structures the check stays exact.
+/// How far the GPU's totals may stray from the CPU's. Written when the predicates' products could
+/// be fused into multiply-adds on the GPU and not on the CPU; since util/unfused.h they round the
+/// same on both, and the H200 run of 2026-11-27 found every set and query equal (the tolerance
+/// printed no "rounding" line). Kept until a GPU run shows the check can be made exact; a
+/// structure that skips a cell or a node loses far more than 1e-4 of the results.
 constexpr double kRoundingTolerance = 1e-4;
 
 /// The CPU's reference: the uniform grid built and queried on the CPU for every query of s,

@@ -71,15 +71,16 @@ CA_HD_INLINE void sphereInteraction(const Sphere& s, bool flip, SurfaceInteracti
 }
 
 /// A mesh triangle's point at barycentrics (b1, b2) and its normals, as every hit on it and every
-/// light sample on it sees them: the vertices, the point on the surface, the unflipped face normal,
-/// and ng / ns before flip_normals (for meshes with normals Mitsuba orients ng by ns).
+/// light sample on it sees them: the vertices, the point on the surface, the unflipped face normal
+/// (for dp/du, dp/dv), and ng / ns with flip_normals applied (for meshes with normals Mitsuba
+/// orients ng by ns).
 struct TrianglePoint {
     Vec3u tri;
     Vec3f p0, p1, p2;
     Float b0;
     Vec3f p;
     Vec3f faceNormal;  // unflipped
-    Vec3f ng, ns;      // flip_normals not applied
+    Vec3f ng, ns;      // flip_normals applied
 };
 
 CA_HD_INLINE TrianglePoint trianglePoint(const SceneView& scene, const Shape& shape, uint32_t primId, Float b1,
@@ -102,6 +103,10 @@ CA_HD_INLINE TrianglePoint trianglePoint(const SceneView& scene, const Shape& sh
             t.ng = faceForward(t.ng, t.ns);
         }
     }
+    if (shape.flipNormals) {
+        t.ng = -t.ng;
+        t.ns = -t.ns;
+    }
     return t;
 }
 
@@ -116,9 +121,6 @@ CA_HD_INLINE SurfaceInteraction computeInteraction(const SceneView& scene, const
         const Shape& shape = scene.shapes[si.shape];
         const TrianglePoint t = trianglePoint(scene, shape, hit.primId, hit.b1, hit.b2);
         const Vec3u tri = t.tri;
-        const Vec3f p0 = t.p0, p1 = t.p1, p2 = t.p2;
-        const Float b0 = t.b0;
-        const Vec3f faceNormal = t.faceNormal;
         si.p = t.p;
         si.ng = t.ng;
         si.ns = t.ns;
@@ -127,12 +129,12 @@ CA_HD_INLINE SurfaceInteraction computeInteraction(const SceneView& scene, const
         bool uvPartials = false;
         if (shape.hasUVs) {
             const Vec2f uv0 = scene.uvs[tri.x], uv1 = scene.uvs[tri.y], uv2 = scene.uvs[tri.z];
-            si.uv = uv0 * b0 + uv1 * hit.b1 + uv2 * hit.b2;
+            si.uv = uv0 * t.b0 + uv1 * hit.b1 + uv2 * hit.b2;
             const Vec2f duv0 = uv1 - uv0, duv1 = uv2 - uv0;
             const Float det = duv0.x * duv1.y - duv0.y * duv1.x;
             if (det != 0) {
                 const Float invDet = 1 / det;
-                const Vec3f dp0 = p1 - p0, dp1 = p2 - p0;
+                const Vec3f dp0 = t.p1 - t.p0, dp1 = t.p2 - t.p0;
                 si.dpdu = (dp0 * duv1.y - dp1 * duv0.y) * invDet;
                 si.dpdv = (dp1 * duv0.x - dp0 * duv1.x) * invDet;
                 uvPartials = true;
@@ -141,13 +143,9 @@ CA_HD_INLINE SurfaceInteraction computeInteraction(const SceneView& scene, const
             si.uv = Vec2f(hit.b1, hit.b2);
         }
         if (!uvPartials) {
-            const Frame faceFrame(faceNormal);
+            const Frame faceFrame(t.faceNormal);
             si.dpdu = faceFrame.s;
             si.dpdv = faceFrame.t;
-        }
-        if (shape.flipNormals) {
-            si.ng = -si.ng;
-            si.ns = -si.ns;
         }
     } else if (hit.primId >= scene.firstCylinder()) {
         const Cylinder& c = scene.cylinders[hit.primId - scene.firstCylinder()];

@@ -112,7 +112,7 @@ CA_HD_INLINE bool sampleAreaLightPosition(const SceneView& scene, const Light& l
         // without the hit's uv and partials.
         const TrianglePoint t = trianglePoint(scene, shape, shape.primOffset + tri, b.x, b.y);
         p = t.p;
-        n = shape.flipNormals ? -t.ng : t.ng;
+        n = t.ng;
         return true;
     }
     if (shape.type == ShapeType::Cylinder) {

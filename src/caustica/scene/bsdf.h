@@ -380,6 +380,16 @@ CA_HD_INLINE bool isDeltaLocal(const Bsdf& b) {
            b.type == BsdfType::ThinDielectric;
 }
 
+/// Whether leaf `id` (bumpmap/normalmap and twosided looked through) has no smooth part.
+CA_HD_INLINE bool leafIsDelta(Span<const Bsdf> bsdfs, uint32_t id) {
+    if (bsdfs[id].type == BsdfType::BumpMap || bsdfs[id].type == BsdfType::NormalMap)
+        id = bsdfs[id].front;  // a perturbed frame changes no lobe
+    const Bsdf& b = bsdfs[id];
+    if (b.type == BsdfType::TwoSided)
+        return isDeltaLocal(bsdfs[b.front]) && isDeltaLocal(bsdfs[b.back]);
+    return isDeltaLocal(b);
+}
+
 /// The leaves of bsdf_composite.h's BSDF trees at `si` (everything but twosided, blendbsdf,
 /// mask and null above them), in world space; `flip`: under the back of a twosided.
 struct LeafOps {
@@ -415,14 +425,7 @@ struct LeafOps {
         return sameSide(r, out.wi);
     }
 
-    CA_HD_INLINE bool isDelta(uint32_t id) const {
-        if (bsdfs[id].type == BsdfType::BumpMap || bsdfs[id].type == BsdfType::NormalMap)
-            id = bsdfs[id].front;  // a perturbed frame changes no lobe
-        const Bsdf& b = bsdfs[id];
-        if (b.type == BsdfType::TwoSided)
-            return isDeltaLocal(bsdfs[b.front]) && isDeltaLocal(bsdfs[b.back]);
-        return isDeltaLocal(b);
-    }
+    CA_HD_INLINE bool isDelta(uint32_t id) const { return leafIsDelta(bsdfs, id); }
 
     /// blendbsdf weight / mask opacity (textured or not), clamped to [0, 1] as Mitsuba.
     CA_HD_INLINE Float weight(const Bsdf& b) const {
@@ -433,16 +436,55 @@ struct LeafOps {
 
 }  // namespace bsdf_detail
 
+// The public entry points below walk the BSDF tree (bsdf_composite.h) only for composites; a
+// plain leaf (almost every BSDF of a scene: diffuse, dielectric, conductor, plastic, ... also
+// under a bumpmap or normalmap, which the leaf resolves) goes straight to it. The leaf paths do
+// the walk's floating-point operations on its one leaf of weight 1 (a sum that starts at zero,
+// a product by one), so both give the same bits.
+
 /// f(wo, wi) · |cosθi| of the non-delta part of BSDF `id` at `si` (world-space unit directions).
 CA_HD_INLINE Spectrum evalBsdf(Span<const Bsdf> bsdfs, uint32_t id, const SurfaceInteraction& si,
                                Vec3f wo, Vec3f wi) {
-    return bsdf_detail::compositeEval(bsdfs, bsdf_detail::LeafOps{bsdfs, si}, id, wo, wi);
+    const bsdf_detail::LeafOps leaf{bsdfs, si};
+    if (bsdf_detail::isComposite(bsdfs[id].type)) return bsdf_detail::compositeEval(bsdfs, leaf, id, wo, wi);
+    Spectrum sum;
+    sum += leaf.eval(id, false, wo, wi) * Float(1);
+    return sum;
 }
 
 /// Solid-angle pdf with which sampleBsdf draws `wi` from its non-delta part.
 CA_HD_INLINE Float pdfBsdf(Span<const Bsdf> bsdfs, uint32_t id, const SurfaceInteraction& si,
                            Vec3f wo, Vec3f wi) {
-    return bsdf_detail::compositePdf(bsdfs, bsdf_detail::LeafOps{bsdfs, si}, id, wo, wi);
+    const bsdf_detail::LeafOps leaf{bsdfs, si};
+    if (bsdf_detail::isComposite(bsdfs[id].type)) return bsdf_detail::compositePdf(bsdfs, leaf, id, wo, wi);
+    Float sum = 0;
+    sum += leaf.pdf(id, false, wo, wi) * Float(1);
+    return sum;
+}
+
+/// evalBsdf (returned) and pdfBsdf (`pdf`) of the same directions, the values of the two calls
+/// bit for bit; a plain leaf is resolved, textured and turned into its local frame once for both
+/// (next-event estimation wants both at every vertex).
+CA_HD_INLINE Spectrum evalPdfBsdf(Span<const Bsdf> bsdfs, uint32_t id, const SurfaceInteraction& si,
+                                  Vec3f wo, Vec3f wi, Float& pdf) {
+    using namespace bsdf_detail;
+    if (isComposite(bsdfs[id].type)) {
+        pdf = pdfBsdf(bsdfs, id, si, wo, wi);
+        return evalBsdf(bsdfs, id, si, wo, wi);
+    }
+    // LeafOps::eval and LeafOps::pdf in one, summed as evalBsdf and pdfBsdf sum them.
+    const Resolved r = resolve(bsdfs, id, si, wo, false);
+    Spectrum f;
+    Float p = 0;
+    if (sameSide(r, wi)) {
+        BsdfScratch scratch;
+        const Bsdf& b = applyBsdfTextures(*r.bsdf, si, scratch);
+        const Vec3f woLocal = r.frame.toLocal(wo), wiLocal = r.frame.toLocal(wi);
+        f += evalLocal(b, woLocal, wiLocal) * shadowTerminator(r, wi) * Float(1);
+        p += pdfLocal(b, woLocal, wiLocal) * Float(1);
+    }  // else: zero, as the walk's sum of a zero
+    pdf = p;
+    return f;
 }
 
 /// Samples an incident direction. `uLobe` chooses between lobes (dielectric reflection or
@@ -450,8 +492,14 @@ CA_HD_INLINE Float pdfBsdf(Span<const Bsdf> bsdfs, uint32_t id, const SurfaceInt
 /// absorbed / no sample.
 CA_HD_INLINE bool sampleBsdf(Span<const Bsdf> bsdfs, uint32_t id, const SurfaceInteraction& si,
                              Vec3f wo, Float uLobe, Vec2f u, BsdfSample& out) {
-    return bsdf_detail::compositeSample(bsdfs, bsdf_detail::LeafOps{bsdfs, si}, id, wo, uLobe, u,
-                                        out);
+    const bsdf_detail::LeafOps leaf{bsdfs, si};
+    if (bsdf_detail::isComposite(bsdfs[id].type))
+        return bsdf_detail::compositeSample(bsdfs, leaf, id, wo, uLobe, u, out);
+    // compositeSample's steps for a tree of one leaf: no blend or mask to back up through.
+    if (!leaf.sample(id, false, wo, uLobe, u, out) || !(out.pdf > 0)) return false;
+    const Spectrum value = out.weight * out.pdf;
+    out.weight = value * (1 / out.pdf);
+    return true;
 }
 
 /// Mitsuba's diffuse Fresnel reflectance (fresnel_diffuse_reflectance): the fraction of a
@@ -489,6 +537,7 @@ CA_HD_INLINE Bsdf makePlastic(Float etaRatio, Spectrum diffuse, Spectrum specula
 
 /// True when the BSDF has no non-delta component (next-event estimation is pointless).
 CA_HD_INLINE bool isDeltaBsdf(Span<const Bsdf> bsdfs, uint32_t id) {
+    if (!bsdf_detail::isComposite(bsdfs[id].type)) return bsdf_detail::leafIsDelta(bsdfs, id);
     const SurfaceInteraction si{};
     return bsdf_detail::compositeIsDelta(bsdfs, bsdf_detail::LeafOps{bsdfs, si}, id);
 }
@@ -516,6 +565,7 @@ CA_HD_INLINE bool isSpecularLeaf(Span<const Bsdf> bsdfs, uint32_t id, Float thre
 /// threshold 0: the delta BSDFs exactly (isDeltaBsdf).
 CA_HD_INLINE bool isSpecularBsdf(Span<const Bsdf> bsdfs, uint32_t id, Float threshold) {
     if (!(threshold > 0)) return isDeltaBsdf(bsdfs, id);
+    if (!bsdf_detail::isComposite(bsdfs[id].type)) return bsdf_detail::isSpecularLeaf(bsdfs, id, threshold);
     const SurfaceInteraction si{};
     const bsdf_detail::LeafOps leaf{bsdfs, si};
     bool specular = true;

@@ -78,7 +78,8 @@ CA_HD Spectrum directRadiance(const SceneView& scene, const Intersector& accel, 
         LightSample ls;
         if (!sampleLight(scene, si.p, uSelect, uLight, ls) || !(ls.pdf > 0) || ls.Le.isBlack())
             continue;
-        const Spectrum f = evalBsdf(scene.bsdfs, bsdf, si, wo, ls.wi);
+        Float bsdfPdf;
+        const Spectrum f = evalPdfBsdf(scene.bsdfs, bsdf, si, wo, ls.wi, bsdfPdf);
         if (f.isBlack()) continue;
         const Ray shadow = ls.dist < kInfinity ? spawnRayTo(si.p, si.ng, ls.p, ls.n)
                                                : spawnRay(si.p, si.ng, ls.wi);
@@ -87,8 +88,7 @@ CA_HD Spectrum directRadiance(const SceneView& scene, const Intersector& accel, 
         // direct.cpp: delta emitters get weight 1 (not 1 / emitter_samples; see above).
         const Float mis =
             ls.delta ? Float(1)
-                     : powerHeuristic(ls.pdf * w.fracEmitter,
-                                      pdfBsdf(scene.bsdfs, bsdf, si, wo, ls.wi) * w.fracBsdf) *
+                     : powerHeuristic(ls.pdf * w.fracEmitter, bsdfPdf * w.fracBsdf) *
                            w.invEmitterSamples;
         result += f * ls.Le * (mis / ls.pdf);
     }

@@ -121,12 +121,12 @@ CA_HD_INLINE bool shadeHitAt(const SceneView& scene, PathState& path, const Surf
         Vec2f uLight = sampler.get2D();
         LightSample ls;
         if (sampleLight(scene, si.p, uSelect, uLight, ls) && ls.pdf > 0 && !ls.Le.isBlack()) {
-            Spectrum f = evalBsdf(scene.bsdfs, bsdf, si, wo, ls.wi);
+            Float bsdfPdf;
+            const Spectrum f = evalPdfBsdf(scene.bsdfs, bsdf, si, wo, ls.wi, bsdfPdf);
             if (!f.isBlack()) {
                 shadow.ray = ls.dist < kInfinity ? spawnRayTo(si.p, si.ng, ls.p, ls.n)
                                                  : spawnRay(si.p, si.ng, ls.wi);
-                Float w = ls.delta ? 1
-                                   : powerHeuristic(ls.pdf, pdfBsdf(scene.bsdfs, bsdf, si, wo, ls.wi));
+                Float w = ls.delta ? 1 : powerHeuristic(ls.pdf, bsdfPdf);
                 shadow.contribution = path.throughput * f * ls.Le * (w / ls.pdf);
                 hasShadow = true;
             }

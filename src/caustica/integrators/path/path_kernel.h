@@ -147,7 +147,7 @@ CA_HD_INLINE bool shadeHitAt(const SceneView& scene, PathState& path, const Surf
     path.prevBsdfPdf = bs.pdf;
     path.prevBsdfDelta = bs.delta;
     path.prevP = si.p;
-    path.ray = spawnRay(si.p, si.ng, bs.wi);
+    spawnRayInto(path.ray, si.p, si.ng, bs.wi);
     ++path.depth;
 
     // ---- Russian roulette (Mitsuba 3: survival probability min(max(β)·η², 0.95)).

@@ -71,12 +71,13 @@ CA_HD_INLINE void sphereInteraction(const Sphere& s, bool flip, SurfaceInteracti
 }
 
 /// A mesh triangle's point at barycentrics (b1, b2) and its normals, as every hit on it and every
-/// light sample on it sees them: the vertices, the point on the surface, the unflipped face normal
-/// (for dp/du, dp/dv), and ng / ns with flip_normals applied (for meshes with normals Mitsuba
-/// orients ng by ns).
+/// light sample on it sees them: the vertex indices, the edges p1 - p0 and p2 - p0, the point on
+/// the surface, the unflipped face normal (for dp/du, dp/dv), and ng / ns with flip_normals
+/// applied (for meshes with normals Mitsuba orients ng by ns). (The edges, not the vertices: the
+/// fewer 12-byte fields g++ copies through the stack, the fewer loads wait on partial stores.)
 struct TrianglePoint {
     Vec3u tri;
-    Vec3f p0, p1, p2;
+    Vec3f edge1, edge2;
     Float b0;
     Vec3f p;
     Vec3f faceNormal;  // unflipped
@@ -87,12 +88,14 @@ CA_HD_INLINE TrianglePoint trianglePoint(const SceneView& scene, const Shape& sh
                                          Float b2) {
     TrianglePoint t;
     t.tri = scene.triangles[primId];
-    t.p0 = scene.positions[t.tri.x];
-    t.p1 = scene.positions[t.tri.y];
-    t.p2 = scene.positions[t.tri.z];
+    // References, not copies: g++ copies a 12-byte Vec3f through general registers and the
+    // stack, and the float loads that follow wait on those stores (store forwarding fails).
+    const Vec3f &p0 = scene.positions[t.tri.x], &p1 = scene.positions[t.tri.y], &p2 = scene.positions[t.tri.z];
     t.b0 = 1 - b1 - b2;
-    t.p = t.p0 * t.b0 + t.p1 * b1 + t.p2 * b2;  // on the surface, not ray-distance rounded
-    t.faceNormal = normalize(cross(t.p1 - t.p0, t.p2 - t.p0));
+    t.p = p0 * t.b0 + p1 * b1 + p2 * b2;  // on the surface, not ray-distance rounded
+    t.edge1 = p1 - p0;
+    t.edge2 = p2 - p0;
+    t.faceNormal = normalize(cross(t.edge1, t.edge2));
     t.ng = t.faceNormal;
     t.ns = t.ng;
     if (shape.hasNormals) {
@@ -134,7 +137,7 @@ CA_HD_INLINE SurfaceInteraction computeInteraction(const SceneView& scene, const
             const Float det = duv0.x * duv1.y - duv0.y * duv1.x;
             if (det != 0) {
                 const Float invDet = 1 / det;
-                const Vec3f dp0 = t.p1 - t.p0, dp1 = t.p2 - t.p0;
+                const Vec3f dp0 = t.edge1, dp1 = t.edge2;
                 si.dpdu = (dp0 * duv1.y - dp1 * duv0.y) * invDet;
                 si.dpdv = (dp1 * duv0.x - dp0 * duv1.x) * invDet;
                 uvPartials = true;

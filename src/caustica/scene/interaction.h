@@ -123,7 +123,6 @@ CA_HD_INLINE SurfaceInteraction computeInteraction(const SceneView& scene, const
         si.shape = scene.triangleShape[hit.primId];
         const Shape& shape = scene.shapes[si.shape];
         const TrianglePoint t = trianglePoint(scene, shape, hit.primId, hit.b1, hit.b2);
-        const Vec3u tri = t.tri;
         si.p = t.p;
         si.ng = t.ng;
         si.ns = t.ns;
@@ -131,7 +130,7 @@ CA_HD_INLINE SurfaceInteraction computeInteraction(const SceneView& scene, const
         // triangle is degenerate) coordinate_system of the unflipped face normal (built only then).
         bool uvPartials = false;
         if (shape.hasUVs) {
-            const Vec2f uv0 = scene.uvs[tri.x], uv1 = scene.uvs[tri.y], uv2 = scene.uvs[tri.z];
+            const Vec2f uv0 = scene.uvs[t.tri.x], uv1 = scene.uvs[t.tri.y], uv2 = scene.uvs[t.tri.z];
             si.uv = uv0 * t.b0 + uv1 * hit.b1 + uv2 * hit.b2;
             const Vec2f duv0 = uv1 - uv0, duv1 = uv2 - uv0;
             const Float det = duv0.x * duv1.y - duv0.y * duv1.x;

@@ -6,8 +6,8 @@
 
 #include <cstdint>
 
-#include "caustica/util/unfused.h"
 #include "caustica/util/math.h"
+#include "caustica/util/unfused.h"
 
 namespace caustica {
 

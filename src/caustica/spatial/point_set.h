@@ -11,9 +11,9 @@
 #include <limits>
 
 #include "caustica/spatial/k_nearest.h"
-#include "caustica/util/unfused.h"
 #include "caustica/util/math.h"
 #include "caustica/util/span.h"
+#include "caustica/util/unfused.h"
 
 namespace caustica {
 

@@ -1,6 +1,6 @@
-// unfused.h — float arithmetic without fused multiply-adds: the spatial predicates (inBall, the segment distance, the
-// k-nearest distances) without fused multiply-adds, so that every structure computes them to the
-// same bits. The host build targets baseline x86-64, which has no FMA; nvcc contracts a product
+// unfused.h — products that are never fused into multiply-adds, for the spatial predicates
+// (inBall, the segment distance, the k-nearest distances), so that every structure computes them
+// to the same bits. The host build targets baseline x86-64, which has no FMA; nvcc contracts a product
 // and a sum into one multiply-add where it sees fit, and it saw fit differently in the inlined
 // copies of different structures: on an H200 the uniform grid's segment query missed one sphere
 // of 24 million that the hash grid, the kd-tree, the multi-level hash and the CPU all found

@@ -6,11 +6,17 @@
 //   bounce  cosine-distributed diffuse rays from the camera rays' first hits (closest hit)
 //   shadow  any-hit rays from the same hit points to the light (or a point above the scene)
 // Scenes: a procedural displaced icosphere (327,680 triangles) on a ground quad, and
-// scenes/cornell-water/scene.xml when it loads (skipped with the reason printed otherwise).
+// scenes/cornell-water/scene.xml and scenes/cornell-box/scene.xml when they load (each skipped
+// with the reason printed otherwise).
+// Backends: the own BVH's three traversals; Embree as caustica builds it (RTC_SCENE_FLAG_ROBUST);
+// and, for reference only, Embree without that flag (`embree-not-robust`, what Mitsuba 3 builds:
+// faster, but it lets rays through shared mesh edges, tests/accel/watertight_test.cpp), so that
+// the price of watertightness is measured beside the rest.
 //
 //   bench_rays [--threads=1,2] [--benchmark_filter=...] [--benchmark_repetitions=N]
-// ends with a table: scene, ray type, threads, Mrays/s of each BVH traversal and of Embree, and
-// the ratios of the short-stack and stackless rates to the full-stack one. --threads lists the
+// ends with a table: scene, ray type, threads, Mrays/s of each BVH traversal and of both Embree
+// builds, and the ratios of the short-stack and stackless rates to the full-stack one, of the
+// full stack to robust Embree and of non-robust to robust Embree. --threads lists the
 // thread counts to run every benchmark with (default 1); with T threads each traces every T-th
 // block of rays (see traceRays) and the rate is rays per second of wall time.
 #include <algorithm>
@@ -46,7 +52,8 @@ struct BenchScene {
     std::string name;
     Scene scene;
     Bvh bvh;
-    std::unique_ptr<EmbreeScene> embree;
+    std::unique_ptr<EmbreeScene> embree;          // as caustica renders: robust
+    std::unique_ptr<EmbreeScene> embreeNotRobust;  // reference only: leaks at shared edges
     std::vector<Ray> camera, bounce, shadow;
 };
 
@@ -134,6 +141,9 @@ void registerScene(const BenchScene& b) {
         registerRays(prefix + "embree", [&b, rays, anyHit](benchmark::State& st) {
             traceRays(st, b.embree->intersector(), *rays, anyHit);
         });
+        registerRays(prefix + "embree-not-robust", [&b, rays, anyHit](benchmark::State& st) {
+            traceRays(st, b.embreeNotRobust->intersector(), *rays, anyHit);
+        });
     }
 }
 
@@ -177,6 +187,9 @@ void addScene(std::string name, Scene scene) {
     const size_t rssBefore = residentBytes();
     b->embree = std::make_unique<EmbreeScene>(b->scene);
     const size_t embreeBytes = residentBytes() - rssBefore;
+    EmbreeSceneOptions notRobust;
+    notRobust.robust = false;
+    b->embreeNotRobust = std::make_unique<EmbreeScene>(b->scene, notRobust);
     makeRays(*b);
     const BvhStats& s = b->bvh.stats;
     std::printf(
@@ -237,27 +250,28 @@ int main(int argc, char** argv) {
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
 
     addScene("icosphere-330k", bench::makeProceduralScene(7));
+    for (const char* name : {"cornell-water", "cornell-box"}) {
 #ifdef CAUSTICA_BENCH_HAS_LOADER
-    const std::string path = std::string(CAUSTICA_SOURCE_DIR) + "/scenes/cornell-water/scene.xml";
-    try {
-        std::vector<std::string> warnings;
-        addScene("cornell-water",
-                 loadScene(path, {{"width", "640"}, {"height", "640"}}, &warnings));
-    } catch (const std::exception& e) {
-        std::printf("cornell-water skipped: %s\n", e.what());
-    }
+        const std::string path = std::string(CAUSTICA_SOURCE_DIR) + "/scenes/" + name + "/scene.xml";
+        try {
+            std::vector<std::string> warnings;
+            addScene(name, loadScene(path, {{"width", "640"}, {"height", "640"}}, &warnings));
+        } catch (const std::exception& e) {
+            std::printf("%s skipped: %s\n", name, e.what());
+        }
 #else
-    std::printf("cornell-water skipped: caustica/io/scene_loader.h is not available\n");
+        std::printf("%s skipped: caustica/io/scene_loader.h is not available\n", name);
 #endif
+    }
     for (const auto& b : gScenes) registerScene(*b);
 
     TableReporter reporter;
     benchmark::RunSpecifiedBenchmarks(&reporter);
 
-    std::printf("\n%-16s %-8s %7s %9s %9s %9s %9s %7s %7s %7s\n", "scene", "rays", "threads",
-                "stack", "short", "stackless", "Embree", "short/", "sless/", "stack/");
-    std::printf("%-16s %-8s %7s %9s %9s %9s %9s %7s %7s %7s\n", "", "", "", "Mrays/s", "Mrays/s",
-                "Mrays/s", "Mrays/s", "stack", "stack", "Embree");
+    std::printf("\n%-16s %-8s %7s %9s %9s %9s %9s %9s %7s %7s %7s %7s\n", "scene", "rays", "threads",
+                "stack", "short", "stackless", "Embree", "Embree", "short/", "sless/", "stack/", "NR/");
+    std::printf("%-16s %-8s %7s %9s %9s %9s %9s %9s %7s %7s %7s %7s\n", "", "", "", "Mrays/s", "Mrays/s",
+                "Mrays/s", "Mrays/s", "NR Mr/s", "stack", "stack", "Embree", "Embree");
     auto fixed2 = [](double v) {
         char buf[32];
         std::snprintf(buf, sizeof buf, "%.2f", v);
@@ -275,13 +289,14 @@ int main(int argc, char** argv) {
                 const double stack = reporter.rate(prefix + "bvh", threads),
                              shortStack = reporter.rate(prefix + "bvh-short", threads),
                              stackless = reporter.rate(prefix + "bvh-stackless", threads),
-                             emb = reporter.rate(prefix + "embree", threads);
-                if (stack < 0 && shortStack < 0 && stackless < 0 && emb < 0) continue;
-                std::printf("%-16s %-8s %7d %9s %9s %9s %9s %7s %7s %7s\n", b->name.c_str(), type,
+                             emb = reporter.rate(prefix + "embree", threads),
+                             embNotRobust = reporter.rate(prefix + "embree-not-robust", threads);
+                if (stack < 0 && shortStack < 0 && stackless < 0 && emb < 0 && embNotRobust < 0) continue;
+                std::printf("%-16s %-8s %7d %9s %9s %9s %9s %9s %7s %7s %7s %7s\n", b->name.c_str(), type,
                             threads, rate(stack).c_str(), rate(shortStack).c_str(),
-                            rate(stackless).c_str(), rate(emb).c_str(),
+                            rate(stackless).c_str(), rate(emb).c_str(), rate(embNotRobust).c_str(),
                             ratio(shortStack, stack).c_str(), ratio(stackless, stack).c_str(),
-                            ratio(stack, emb).c_str());
+                            ratio(stack, emb).c_str(), ratio(embNotRobust, emb).c_str());
             }
     benchmark::Shutdown();
     return 0;

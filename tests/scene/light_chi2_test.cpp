@@ -262,5 +262,22 @@ TEST(LightChi2, MeshWithUnequalTriangles) {
     meshChi2(view, rects, Vec3f(2.5f, 0.2f, 0.4f), 0.5 + 0.5 * 6 / 8);
 }
 
+/// A rectangle of two triangles, which finalizeLights samples as a parallelogram (Light::isQuad,
+/// without the triangle CDF): the same directional density from points in front of it and none
+/// from behind.
+TEST(LightChi2, RectangleOfTwoTriangles) {
+    test::RectMesh rect({-1, -0.5f, 2}, {0, 1, 0}, {2, 0, 0});  // faces -z
+    rect.positions.resize(4);
+    rect.triangles = {{0, 1, 2}, {2, 3, 0}};
+    Scene scene;
+    test::addAreaLight(scene, test::addMesh(scene, rect.positions, rect.triangles), Spectrum(2.f));
+    test::addPointLight(scene, {0, 0, 5}, Spectrum(1.f));  // selection probability 1/2
+    finalizeLights(scene);
+    ASSERT_TRUE(scene.lights[0].isQuad);
+    const SceneView view = scene.view();
+    meshChi2(view, {rect}, Vec3f(0.3f, 0.2f, 0.4f), 0.5);
+    meshChi2(view, {rect}, Vec3f(0.3f, 0.2f, 3.0f), 1.0);  // behind it
+}
+
 }  // namespace
 }  // namespace caustica

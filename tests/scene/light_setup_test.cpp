@@ -1,6 +1,10 @@
 // Tests of finalizeLights: triangle-area CDFs, areas, the environment's bounding sphere, errors.
 #include <gtest/gtest.h>
 
+#include <vector>
+
+#include "caustica/scene/interaction.h"
+#include "caustica/scene/light.h"
 #include "caustica/scene/light_setup.h"
 #include "caustica/util/error.h"
 #include "scene/scene_builder.h"
@@ -32,6 +36,93 @@ TEST(FinalizeLights, MeshCdfAndArea) {
     const size_t n = scene.lightCdf.size();
     finalizeLights(scene);
     EXPECT_EQ(scene.lightCdf.size(), n);
+}
+
+/// A rectangle as Mitsuba's rectangle shape is meshed: corners o, o + u, o + u + v, o + v and the
+/// triangles (0, 1, 2), (2, 3, 0).
+struct TwoTriangleRect {
+    std::vector<Vec3f> positions;
+    std::vector<Vec3u> triangles = {{0, 1, 2}, {2, 3, 0}};
+    TwoTriangleRect(Vec3f o, Vec3f u, Vec3f v) : positions{o, o + u, o + u + v, o + v} {}
+};
+
+/// The light on a mesh of `positions` / `triangles` after finalizeLights.
+Light meshLight(const std::vector<Vec3f>& positions, const std::vector<Vec3u>& triangles, bool flip = false,
+                const std::vector<Vec3f>& normals = {}) {
+    Scene scene;
+    const uint32_t l =
+        test::addAreaLight(scene, test::addMesh(scene, positions, triangles, flip, normals), Spectrum(1.f));
+    finalizeLights(scene);
+    return scene.lights[l];
+}
+
+TEST(FinalizeLights, RectangleLightIsSampledAsAParallelogram) {
+    const Vec3f o(1, 2, 3), u(2, 0, 0.5f), v(0, 1.5f, 0);
+    const TwoTriangleRect rect(o, u, v);
+    Scene scene;
+    const uint32_t shape = test::addMesh(scene, rect.positions, rect.triangles);
+    const uint32_t l = test::addAreaLight(scene, shape, Spectrum(1.f));
+    finalizeLights(scene);
+    const Light& light = scene.lights[l];
+    ASSERT_TRUE(light.isQuad);
+    // The parallelogram's four corners are the rectangle's.
+    const Vec3f corners[4] = {light.quadCorner, light.quadCorner + light.quadEdgeU,
+                              light.quadCorner + light.quadEdgeV,
+                              light.quadCorner + light.quadEdgeU + light.quadEdgeV};
+    for (const Vec3f& c : corners) {
+        bool found = false;
+        for (const Vec3f& p : rect.positions) found = found || length(c - p) < 1e-6f;
+        EXPECT_TRUE(found) << c.x << " " << c.y << " " << c.z;
+    }
+    // Its normal is the one a hit on the light sees; its area the triangles'.
+    const SceneView view = scene.view();
+    const Vec3f ng = trianglePoint(view, scene.shapes[shape], 0, 0.25f, 0.25f).ng;
+    EXPECT_NEAR(dot(light.quadNormal, ng), 1.0f, 1e-6f);
+    EXPECT_NEAR(length(cross(light.quadEdgeU, light.quadEdgeV)), light.area, 1e-5f);
+    // Samples lie on the rectangle with that normal, and cover it uniformly (quadrant counts).
+    int quadrant[4] = {};
+    for (int i = 0; i < 4000; ++i) {
+        const Vec2f s((i % 64 + 0.5f) / 64, (i / 64 + 0.5f) / 62.5f);
+        Vec3f p, n;
+        ASSERT_TRUE(sampleAreaLightPosition(view, light, s, p, n));
+        EXPECT_EQ(n.x, light.quadNormal.x);
+        const Vec3f d = p - o;
+        const Float a = dot(d, u) / dot(u, u), b = dot(d, v) / dot(v, v);
+        ASSERT_TRUE(a > -1e-5f && a < 1 + 1e-5f && b > -1e-5f && b < 1 + 1e-5f) << a << " " << b;
+        EXPECT_NEAR(dot(d, ng), 0.0f, 1e-5f);
+        ++quadrant[int(a >= 0.5f) + 2 * int(b >= 0.5f)];
+    }
+    for (int q = 0; q < 4; ++q) EXPECT_NEAR(quadrant[q], 1000, 40) << q;
+}
+
+TEST(FinalizeLights, QuadFollowsFlipAndConstantNormals) {
+    const TwoTriangleRect rect({0, 0, 0}, {1, 0, 0}, {0, 1, 0});  // winding normal +z
+    const Light plain = meshLight(rect.positions, rect.triangles);
+    ASSERT_TRUE(plain.isQuad);
+    EXPECT_NEAR(plain.quadNormal.z, 1.0f, 1e-6f);
+    const Light flipped = meshLight(rect.positions, rect.triangles, true);
+    ASSERT_TRUE(flipped.isQuad);
+    EXPECT_NEAR(flipped.quadNormal.z, -1.0f, 1e-6f);
+    // Constant shading normals against the winding: Mitsuba orients the front side by them.
+    const Light byNormals = meshLight(rect.positions, rect.triangles, false, std::vector<Vec3f>(4, Vec3f(0, 0, -1)));
+    ASSERT_TRUE(byNormals.isQuad);
+    EXPECT_NEAR(byNormals.quadNormal.z, -1.0f, 1e-6f);
+}
+
+TEST(FinalizeLights, OtherMeshesKeepTheTriangleCdf) {
+    const TwoTriangleRect rect({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
+    // Shading normals that vary across the rectangle.
+    EXPECT_FALSE(meshLight(rect.positions, rect.triangles, false,
+                           {{0, 0, 1}, {0, 0.1f, 1}, {0, 0, 1}, {0, 0, 1}})
+                     .isQuad);
+    // A kite: two triangles on a diagonal, not a parallelogram.
+    EXPECT_FALSE(meshLight({{0, 0, 0}, {1, 0, 0}, {1.5f, 1.5f, 0}, {0, 1, 0}}, {{0, 1, 2}, {2, 3, 0}}).isQuad);
+    // The two halves wound opposite ways: they emit to different sides.
+    EXPECT_FALSE(meshLight(rect.positions, {{0, 1, 2}, {0, 3, 2}}).isQuad);
+    // Two triangles that share one vertex only, and a rectangle of four triangles.
+    EXPECT_FALSE(meshLight({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}}, {{0, 1, 2}, {0, 3, 4}}).isQuad);
+    const test::RectMesh four({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
+    EXPECT_FALSE(meshLight(four.positions, four.triangles).isQuad);
 }
 
 TEST(FinalizeLights, TwoMeshLightsGetDisjointCdfs) {

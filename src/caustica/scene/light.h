@@ -94,10 +94,16 @@ CA_HD_INLINE Float areaToSolidAngle(Vec3f refP, Vec3f p, Vec3f n, Float area) {
 
 /// A point `p` uniform by area on area light `light`'s shape (mesh, cylinder, sphere) with its
 /// front (emitting) unit normal `n`, flip_normals included: density 1 / light.area. Returns false
-/// when the mesh's triangle CDF gives the point no probability.
+/// when the mesh's triangle CDF gives the point no probability. A mesh that is one parallelogram
+/// (Light::isQuad) is sampled as Mitsuba samples its rectangle: p = corner + u.x edgeU + u.y edgeV.
 CA_HD_INLINE bool sampleAreaLightPosition(const SceneView& scene, const Light& light, Vec2f u,
                                           Vec3f& p, Vec3f& n) {
     const Shape& shape = scene.shapes[light.shape];
+    if (light.isQuad) {  // a parallelogram: the same density, no triangle to pick or rebuild
+        p = light.quadCorner + light.quadEdgeU * u.x + light.quadEdgeV * u.y;
+        n = light.quadNormal;
+        return true;
+    }
     if (shape.type == ShapeType::Mesh) {
         // Triangle by area (reusing u.x, rescaled, so that u stays stratified), then a uniform
         // point on it: the area density is 1 / total area.

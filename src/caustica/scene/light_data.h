@@ -25,6 +25,11 @@ struct Light {
     uint32_t cdfOffset = 0;   // area light on a mesh: its triangles' normalised cumulative areas
     uint32_t cdfCount = 0;    //   are SceneView::lightCdf[cdfOffset, cdfOffset + cdfCount)
     Float area = 0;           // area: total surface area of the shape
+    // Area light on a mesh of two triangles that form a parallelogram (a rectangle shape): its
+    // points are quadCorner + s quadEdgeU + t quadEdgeV, (s, t) in [0, 1)², uniform by area
+    // without the triangle CDF, and quadNormal is its front unit normal (light_setup.cpp).
+    bool isQuad = false;
+    Vec3f quadCorner, quadEdgeU, quadEdgeV, quadNormal;
     Vec3f sceneCenter;        // constant, directional, envmap: bounding sphere of the scene
     Float sceneRadius = 0;
     // spot: intensity in `radiance`, position in `position`; directional: irradiance in

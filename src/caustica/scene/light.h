@@ -98,12 +98,12 @@ CA_HD_INLINE Float areaToSolidAngle(Vec3f refP, Vec3f p, Vec3f n, Float area) {
 /// (Light::isQuad) is sampled as Mitsuba samples its rectangle: p = corner + u.x edgeU + u.y edgeV.
 CA_HD_INLINE bool sampleAreaLightPosition(const SceneView& scene, const Light& light, Vec2f u,
                                           Vec3f& p, Vec3f& n) {
-    const Shape& shape = scene.shapes[light.shape];
     if (light.isQuad) {  // a parallelogram: the same density, no triangle to pick or rebuild
         p = light.quadCorner + light.quadEdgeU * u.x + light.quadEdgeV * u.y;
         n = light.quadNormal;
         return true;
     }
+    const Shape& shape = scene.shapes[light.shape];
     if (shape.type == ShapeType::Mesh) {
         // Triangle by area (reusing u.x, rescaled, so that u stays stratified), then a uniform
         // point on it: the area density is 1 / total area.

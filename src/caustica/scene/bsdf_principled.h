@@ -63,11 +63,13 @@ struct Gtr1 {
     }
     CA_HD Float pdf(Vec3f m) const { return m.z < 0 ? Float(0) : m.z * D(m); }
     CA_HD Vec3f sample(Vec2f u) const {
-        const Float phi = 2 * kPi * u.x, a2 = sqr(alpha);
+        const Float a2 = sqr(alpha);
         const Float cos2 = (1 - std::pow(a2, 1 - u.y)) / (1 - a2);
         const Float sinT = std::sqrt(max(Float(0), 1 - cos2));
         const Float cosT = std::sqrt(max(Float(0), cos2));
-        return {std::cos(phi) * sinT, std::sin(phi) * sinT, cosT};
+        Float sinPhi, cosPhi;  // φ = 2π u.x
+        sinCosTwoPi(u.x, sinPhi, cosPhi);
+        return {cosPhi * sinT, sinPhi * sinT, cosT};
     }
 };
 

@@ -55,9 +55,10 @@ CA_HD_INLINE void sampleSphereCone(const Sphere& s, Vec3f refP, Float omc, Float
     const Float cosAlpha = sin2Theta / sinThetaMax +
                            cosTheta * safeSqrt(1 - sin2Theta / (sinThetaMax * sinThetaMax));
     const Float sinAlpha = safeSqrt(1 - cosAlpha * cosAlpha);
-    const Float phi = 2 * kPi * u.y;
+    Float sinPhi, cosPhi;  // φ = 2π u.y
+    sinCosTwoPi(u.y, sinPhi, cosPhi);
     const Frame frame((s.center - refP) * (1 / distC));
-    outward = frame.toWorld(Vec3f(-sinAlpha * std::cos(phi), -sinAlpha * std::sin(phi), -cosAlpha));
+    outward = frame.toWorld(Vec3f(-sinAlpha * cosPhi, -sinAlpha * sinPhi, -cosAlpha));
     outward = normalize(outward);
     p = s.center + outward * s.radius;
 }
@@ -125,8 +126,9 @@ CA_HD_INLINE bool sampleAreaLightPosition(const SceneView& scene, const Light& l
         // Uniform by area as Mitsuba's Cylinder::sample_position: height u.x, angle 2π u.y.
         const Cylinder& c = scene.cylinders[shape.primOffset];
         SurfaceInteraction si;
-        const Float phi = 2 * kPi * u.y;
-        const Vec3f radial = c.xAxis * std::cos(phi) + cross(c.axis, c.xAxis) * std::sin(phi);
+        Float sinPhi, cosPhi;  // φ = 2π u.y
+        sinCosTwoPi(u.y, sinPhi, cosPhi);
+        const Vec3f radial = c.xAxis * cosPhi + cross(c.axis, c.xAxis) * sinPhi;
         si.p = c.base + c.axis * (u.x * c.length) + radial * c.radius;
         cylinderInteraction(c, shape.flipNormals, si);
         p = si.p;

@@ -164,9 +164,10 @@ struct MicrofacetDistribution {
         const Vec3f t2 = cross(vh, t1);
         // Section 4.2: parameterisation of the projected area.
         const Float r = std::sqrt(u.x);
-        const Float phi = 2 * kPi * u.y;
-        const Float p1 = r * std::cos(phi);
-        Float p2 = r * std::sin(phi);
+        Float sinPhi, cosPhi;  // φ = 2π u.y
+        sinCosTwoPi(u.y, sinPhi, cosPhi);
+        const Float p1 = r * cosPhi;
+        Float p2 = r * sinPhi;
         const Float s = Float(0.5) * (1 + vh.z);
         p2 = (1 - s) * std::sqrt(max(Float(0), 1 - p1 * p1)) + s * p2;
         // Section 4.3: reprojection onto the hemisphere.

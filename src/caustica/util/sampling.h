@@ -17,15 +17,15 @@ namespace caustica {
 CA_HD_INLINE Vec2f sampleConcentricDisk(Vec2f u) {
     const Float x = 2 * u.x - 1, y = 2 * u.y - 1;
     if (x == 0 && y == 0) return {0, 0};
-    Float r, theta;
+    // The point at radius r and angle θ = (π/4)(y/x) (|x| > |y|) or π/2 - (π/4)(x/y): both
+    // angles' sine and cosine come from one in [-π/4, π/4], cos(π/2 - a) = sin a and back.
+    Float s, c;
     if (std::fabs(x) > std::fabs(y)) {
-        r = x;
-        theta = (kPi / 4) * (y / x);
-    } else {
-        r = y;
-        theta = kPi / 2 - (kPi / 4) * (x / y);
+        sinCosQuarterPi((kPi / 4) * (y / x), s, c);
+        return {x * c, x * s};
     }
-    return {r * std::cos(theta), r * std::sin(theta)};
+    sinCosQuarterPi((kPi / 4) * (x / y), s, c);
+    return {y * s, y * c};
 }
 CA_HD_INLINE Float concentricDiskPdf() { return kInvPi; }
 
@@ -41,8 +41,9 @@ CA_HD_INLINE Float cosineHemispherePdf(Vec3f w) { return w.z > 0 ? w.z * kInvPi 
 CA_HD_INLINE Vec3f sampleUniformSphere(Vec2f u) {
     const Float z = 1 - 2 * u.x;
     const Float r = safeSqrt(1 - z * z);
-    const Float phi = 2 * kPi * u.y;
-    return {r * std::cos(phi), r * std::sin(phi), z};
+    Float sinPhi, cosPhi;  // φ = 2π u.y
+    sinCosTwoPi(u.y, sinPhi, cosPhi);
+    return {r * cosPhi, r * sinPhi, z};
 }
 CA_HD_INLINE Float uniformSpherePdf() { return kInv4Pi; }
 
@@ -53,8 +54,9 @@ CA_HD_INLINE Vec3f sampleUniformConeOmc(Vec2f u, Float oneMinusCosMax) {
     const Float v = u.x * oneMinusCosMax;
     const Float cosTheta = 1 - v;
     const Float sinTheta = safeSqrt(v * (2 - v));
-    const Float phi = 2 * kPi * u.y;
-    return {sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta};
+    Float sinPhi, cosPhi;  // φ = 2π u.y
+    sinCosTwoPi(u.y, sinPhi, cosPhi);
+    return {sinTheta * cosPhi, sinTheta * sinPhi, cosTheta};
 }
 CA_HD_INLINE Float uniformConePdfOmc(Float oneMinusCosMax) {
     return oneMinusCosMax > 0 ? 1 / (2 * kPi * oneMinusCosMax) : Float(0);

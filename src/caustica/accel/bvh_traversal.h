@@ -151,8 +151,12 @@ CA_BVH_INLINE bool intersectPrecomputed(const BvhPrimitive& p, uint32_t numTrian
 /// Host version of the precomputed leaf loop: four primitives at a time with intersectTriangle4
 /// (triangle4.h), which gives each lane the scalar test's exact result. Of the lanes hit, the
 /// smallest t wins, the earliest lane on a tie: the primitive the scalar loop would keep (it only
-/// accepts t below the current limit). A last group of fewer than four repeats the last primitive,
-/// which never beats its first copy; a group holding a sphere or cylinder is tested one by one.
+/// accepts t below the current limit, so it ends with the smallest t, the earliest on a tie, and
+/// the limit it passes on changes no primitive's t, only whether it is taken). A last group of
+/// fewer than four repeats the last primitive, which never beats its first copy. In a group that
+/// holds spheres or cylinders, the triangle lanes still run as one SSE test and the others the
+/// scalar one, all against the group's starting limit; the same rule then picks among them. A
+/// group of one or two primitives is tested one by one.
 template <bool AnyHit>
 CA_BVH_INLINE bool intersectLeaf4(const BvhView& bvh, uint32_t numTriangles, uint32_t firstCylinder,
                                   uint32_t begin, uint32_t end, const TraversalRay& r,
@@ -163,7 +167,8 @@ CA_BVH_INLINE bool intersectLeaf4(const BvhView& bvh, uint32_t numTriangles, uin
         uint32_t index[4];
         for (uint32_t l = 0; l < 4; ++l) index[l] = min(i + l, end - 1);
         const Triangle4 tri = Triangle4::load(bvh.prims.data(), index);
-        if (end - i < 3 || tri.triangleLanes(numTriangles) != 0xFu) {
+        const uint32_t triangles = tri.triangleLanes(numTriangles);
+        if (end - i < 3 || triangles == 0) {
             for (uint32_t j = i; j < min(i + 4, end); ++j)
                 if (intersectPrecomputed(bvh.prims[j], numTriangles, firstCylinder, r.triangle, ray,
                                          hit)) {
@@ -173,7 +178,19 @@ CA_BVH_INLINE bool intersectLeaf4(const BvhView& bvh, uint32_t numTriangles, uin
             continue;
         }
         float t[4], b1[4], b2[4];
-        uint32_t mask = intersectTriangle4(o, r.triangle, hit.t, tri, t, b1, b2);
+        uint32_t mask = intersectTriangle4(o, r.triangle, hit.t, tri, t, b1, b2) & triangles;
+        // The other primitives of the group (each once: a repeated last one is not retested).
+        for (uint32_t others = ~triangles & 0xFu & ((1u << min(4u, end - i)) - 1); others != 0;
+             others &= others - 1) {
+            const int l = lowestBit(others);
+            Hit h = hit;
+            if (!intersectPrecomputed(bvh.prims[index[l]], numTriangles, firstCylinder, r.triangle, ray, h))
+                continue;
+            t[l] = h.t;
+            b1[l] = h.b1;
+            b2[l] = h.b2;
+            mask |= 1u << l;
+        }
         if (mask == 0) continue;
         if (AnyHit) return true;
         int best = lowestBit(mask);

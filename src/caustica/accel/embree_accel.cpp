@@ -221,12 +221,12 @@ void occludedPackets(const EmbreeIntersector& it, int n, const Ray* const* rays,
     });
 }
 
-/// Rays per Embree packet call: 4 where Embree runs 4-wide packets natively, else 1 (single rays).
-/// Wider packets are supported (and tested) but were slower on this project's AVX-512 VM: on
-/// incoherent bounce rays 16-wide packets cost more traversal than they save, and the shading
-/// between the trace stages ran slower beside them; 4-wide was the fastest on every bundled scene
-/// (docs/PERFORMANCE.md, 2026-11-26, Embree packet queries).
-constexpr int kPreferredPacketWidth = 4;
+/// Rays per Embree packet call: the widest packet Embree runs natively on this CPU (16 with
+/// AVX-512, 8 with AVX2, 4 with SSE), single rays without. On this project's AVX-512 VM 16-wide
+/// packets are 4-7% faster than 4-wide for the path tracer and about 9% for the photon pass
+/// (docs/PERFORMANCE.md, 2026-11-27 evening); an earlier measurement under a load of 8-14, before
+/// Embree shared the scene's arrays, had found them slower.
+constexpr int kPreferredPacketWidth = 16;
 
 /// The widest packet up to `maxWidth` that Embree runs natively on this CPU (its ISA), or 1.
 int widestNativePacket(RTCDevice device, int maxWidth) {

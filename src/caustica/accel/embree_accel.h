@@ -69,8 +69,8 @@ public:
     EmbreeIntersector intersector() const {
         return EmbreeIntersector{scene_, numTriangles_, firstCylinder_, packetWidth_};
     }
-    /// Rays per Embree packet call: 4 where Embree runs 4-wide packets natively on this CPU, else 1
-    /// (single rays). 8 and 16 work too (set EmbreeIntersector::packetWidth) but were slower here.
+    /// Rays per Embree packet call: the widest packet Embree runs natively on this CPU (16, 8 or
+    /// 4), else 1 (single rays). Narrower ones work too (set EmbreeIntersector::packetWidth).
     int packetWidth() const { return packetWidth_; }
     /// The widest packet (16, 8, 4 or 1) Embree runs natively on this CPU.
     int nativePacketWidth() const { return nativePacketWidth_; }

@@ -28,7 +28,7 @@
 #include "caustica/integrators/path/path_kernel.h"
 #include "caustica/parallel/buffer.h"
 #include "caustica/parallel/compact.h"
-#include "caustica/parallel/prefetch.h"
+#include "caustica/integrators/hit_prefetch.h"
 #include "caustica/util/error.h"
 
 namespace caustica {
@@ -45,23 +45,6 @@ struct Paths {
     uint32_t* hasShadow;  // per queue position: 0 or 1
     uint32_t* selected;   // compacted queue positions
 };
-
-/// What computeInteraction will read for `hit`, prefetched in two steps a few queue entries
-/// apart: first the triangle's vertex indices, then (once those are in cache) its vertex data.
-CA_HD_INLINE void prefetchTriangle(const SceneView& scene, const Hit& hit) {
-    if (hit.primId >= scene.numTriangles()) return;  // a miss, or not a triangle
-    prefetchRead(&scene.triangles[hit.primId]);
-    prefetchRead(&scene.triangleShape[hit.primId]);
-}
-CA_HD_INLINE void prefetchVertices(const SceneView& scene, const Hit& hit) {
-    if (hit.primId >= scene.numTriangles()) return;
-    const Vec3u tri = scene.triangles[hit.primId];
-    for (uint32_t v : {tri.x, tri.y, tri.z}) {
-        prefetchRead(&scene.positions[v]);
-        if (!scene.normals.empty()) prefetchRead(&scene.normals[v]);
-        if (!scene.uvs.empty()) prefetchRead(&scene.uvs[v]);
-    }
-}
 
 /// The AOVs of the chunk's camera rays (aov_kernel.h), written to their pass slots: for queue
 /// entries [0, count) of `queue` (null: path ids 0, 1, ...), whose camera rays the first extend

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include "caustica/accel/intersector.h"
+#include "caustica/integrators/hit_prefetch.h"
 #include "caustica/integrators/megakernel_pass.h"
 #include "caustica/integrators/sppm/sppm_kernel.h"
 #include "caustica/integrators/sppm/sppm_photon.h"
@@ -121,6 +123,77 @@ CA_HD void photonPath(const SceneView& view, const Intersector& accel, size_t i,
     sppmAtomicAdd(rayBlocks + i / 1024, rays);
 }
 
+/// Photon paths a launch item of the photon pass takes: a group, where the intersector answers
+/// packets of rays (Embree on the host), else one (a GPU thread, the own BVH).
+template <class Intersector>
+constexpr size_t photonPathsPerItem() {
+    return rayPacketSize<Intersector>() > 1 ? 64 : 1;
+}
+
+/// Photon paths [first, first + count) with up to rayPacketSize<I>() of them in flight: their
+/// next segments are traced as one packet query, then each lane takes its hit as sppmTracePhoton
+/// would (sppmPhotonHit, its own stream), and a path that ends hands its lane to the next path of
+/// the range. Every path makes the same photons as traced alone; only the order of the sink's
+/// calls differs. The hits' triangles are prefetched before the lanes shade them. With packets of
+/// one ray it is photonPath for each. Rays are counted in block first / 1024.
+template <class Intersector, class Sink>
+CA_HD void photonPathGroup(const SceneView& view, const Intersector& accel, size_t first, size_t count,
+                           uint64_t iteration, uint64_t seed, const PathSettings& path, uint32_t maxDepth,
+                           Float specularBelow, uint64_t* rayBlocks, Sink&& sink) {
+    constexpr int L = rayPacketSize<Intersector>();
+    const size_t end = first + count;
+    if constexpr (L == 1) {
+        for (size_t i = first; i < end; ++i)
+            photonPath(view, accel, i, iteration, seed, path, maxDepth, specularBelow, rayBlocks, sink);
+    } else {
+        SppmPhotonPath paths[L];
+        IndependentSampler samplers[L];
+        Hit hits[L];
+        uint32_t found[L];
+        const Ray* rays[L];
+        Hit* hitOut[L];
+        size_t next = first;
+        // Starts the next path of the range that traces a ray in lane `slot`; false: none left.
+        const auto start = [&](int slot) {
+            while (next < end) {
+                samplers[slot] = photonSampler(next++, iteration, seed);
+                if (sppmStartPhoton(view, samplers[slot], paths[slot]) && sppmPhotonWantsRay(paths[slot], maxDepth))
+                    return true;
+            }
+            return false;
+        };
+        int live = 0;  // lanes [0, live) hold paths
+        while (live < L && start(live)) ++live;
+        uint32_t traced = 0;
+        while (live > 0) {
+            for (int j = 0; j < live; ++j) {
+                rays[j] = &paths[j].ray;
+                hitOut[j] = &hits[j];
+            }
+            intersectPacket(accel, live, rays, hitOut, found);
+            traced += uint32_t(live);
+            for (int j = 0; j < live; ++j) prefetchTriangle(view, hits[j]);
+            for (int j = 0; j < live; ++j) prefetchVertices(view, hits[j]);
+            for (int j = 0; j < live;) {
+                if ((found[j] && sppmPhotonHit(view, samplers[j], path, maxDepth, specularBelow, paths[j], hits[j],
+                                               sink)) ||
+                    start(j)) {
+                    ++j;
+                    continue;
+                }
+                // Lane j is free and the range spent: the last lane (not yet shaded) moves here.
+                if (j < --live) {
+                    paths[j] = paths[live];
+                    samplers[j] = samplers[live];
+                    hits[j] = hits[live];
+                    found[j] = found[live];
+                }
+            }
+        }
+        sppmAtomicAdd(rayBlocks + first / 1024, traced);
+    }
+}
+
 /// Direction "deposit": each photon of [first, first + photons) adds into every visible point
 /// whose sphere covers its hit (`lookup` over the visible points' spheres; j indexes `list`).
 template <class Exec, class Intersector, class Lookup>
@@ -128,19 +201,21 @@ void depositPhotons(Exec exec, const SceneView& view, const Intersector& accel, 
                     const SppmVisiblePoint* points, const uint32_t* list, PathSettings path, uint32_t maxDepth,
                     Float specularBelow, SppmFixedPoint fixed, uint64_t seed, uint64_t iteration, uint64_t first,
                     uint64_t photons, uint64_t* phi, uint64_t* m, uint64_t* rayBlocks) {
+    constexpr size_t G = photonPathsPerItem<Intersector>();
     launch(
-        exec, "sppm.photons", size_t(photons),
-        [=] CA_HD(size_t i) {
-            photonPath(view, accel, size_t(first) + i, iteration, seed, path, maxDepth, specularBelow, rayBlocks,
-                       [&](const SurfaceInteraction& si, Vec3f wo, const Spectrum& flux, uint32_t k) {
-                           lookup.forEachSphereCovering(si.p, [&](uint32_t j) {
-                               const SppmVisiblePoint& vp = points[list[j]];
-                               const Spectrum d = sppmContribution(view, vp, si.ng, wo, flux, k, maxDepth);
-                               if (!d.isBlack()) sppmDeposit(fixed, d, phi + 3 * size_t(vp.stat), m + vp.stat);
-                           });
-                       });
+        exec, "sppm.photons", size_t((photons + G - 1) / G),
+        [=] CA_HD(size_t g) {
+            const size_t from = size_t(first) + g * G, count = min(G, size_t(first + photons) - from);
+            photonPathGroup(view, accel, from, count, iteration, seed, path, maxDepth, specularBelow, rayBlocks,
+                            [&](const SurfaceInteraction& si, Vec3f wo, const Spectrum& flux, uint32_t k) {
+                                lookup.forEachSphereCovering(si.p, [&](uint32_t j) {
+                                    const SppmVisiblePoint& vp = points[list[j]];
+                                    const Spectrum d = sppmContribution(view, vp, si.ng, wo, flux, k, maxDepth);
+                                    if (!d.isBlack()) sppmDeposit(fixed, d, phi + 3 * size_t(vp.stat), m + vp.stat);
+                                });
+                            });
         },
-        16);
+        G > 1 ? 1 : 16);
 }
 
 /// Direction "gather", first half: each photon path of [first, first + photons) appends its
@@ -150,17 +225,19 @@ template <class Exec, class Intersector>
 void storePhotons(Exec exec, const SceneView& view, const Intersector& accel, PathSettings path, uint32_t maxDepth,
                   Float specularBelow, uint64_t seed, uint64_t iteration, uint64_t first, uint64_t photons,
                   SppmPhotonStore store, uint64_t* rayBlocks) {
+    constexpr size_t G = photonPathsPerItem<Intersector>();
     launch(
-        exec, "sppm.store", size_t(photons),
-        [=] CA_HD(size_t i) {
+        exec, "sppm.store", size_t((photons + G - 1) / G),
+        [=] CA_HD(size_t g) {
+            const size_t from = size_t(first) + g * G, count = min(G, size_t(first + photons) - from);
             SppmPhotonBatch batch(store);
-            photonPath(view, accel, size_t(first) + i, iteration, seed, path, maxDepth, specularBelow, rayBlocks,
-                       [&](const SurfaceInteraction& si, Vec3f wo, const Spectrum& flux, uint32_t k) {
-                           batch.add(SppmPhoton{si.p, wo, si.ng, flux, k});
-                       });
+            photonPathGroup(view, accel, from, count, iteration, seed, path, maxDepth, specularBelow, rayBlocks,
+                            [&](const SurfaceInteraction& si, Vec3f wo, const Spectrum& flux, uint32_t k) {
+                                batch.add(SppmPhoton{si.p, wo, si.ng, flux, k});
+                            });
             batch.flush();
         },
-        16);
+        G > 1 ? 1 : 16);
 }
 
 /// Copies the photons into `order` (sorted: order = the sort's permutation; else identity) and

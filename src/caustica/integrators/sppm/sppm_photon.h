@@ -64,50 +64,88 @@ CA_HD_INLINE Spectrum sppmContribution(const SceneView& scene, const SppmVisible
         vp, [&](Vec3f wi) { return evalBsdf(scene.bsdfs, vp.bsdf, vp.si, vp.wo, wi); }, ng, wo, flux, k, maxDepth);
 }
 
+/// A photon path between two of its rays: the segment to trace next and what it carries.
+struct SppmPhotonPath {
+    Ray ray;              // the next segment
+    Spectrum flux;        // Φ at the light
+    Spectrum throughput;  // importance-mode weight since the light (roulette included)
+    uint32_t k = 1;       // segments from the light to the next hit
+};
+
+/// The photon's emission (its first three numbers). Returns false when the light gives nothing.
+template <class Sampler>
+CA_HD_INLINE bool sppmStartPhoton(const SceneView& scene, Sampler& sampler, SppmPhotonPath& path) {
+    EmissionSample e;
+    const Float uSelect = sampler.get1D();
+    const Vec2f uPos = sampler.get2D();
+    const Vec2f uDir = sampler.get2D();
+    if (!sampleEmission(scene, uSelect, uPos, uDir, e)) return false;
+    path.ray = e.ray;
+    path.flux = e.flux;
+    path.throughput = Spectrum(1);
+    path.k = 1;
+    return true;
+}
+
+/// Whether the path traces its next segment (`maxDepth`: see sppmTracePhoton).
+CA_HD_INLINE bool sppmPhotonWantsRay(const SppmPhotonPath& path, uint32_t maxDepth) {
+    return path.k < maxDepth && path.k <= uint32_t(kSppmDepthCap);
+}
+
+/// What the photon does at `hit`, the closest hit of path.ray: sink(si, wo, flux, k) there unless
+/// k < 2 or the BSDF is specular, then (unless no contribution can follow) a BSDF sample and
+/// roulette, which set path.ray to the next segment. Returns whether the path goes on (and traces
+/// path.ray). Three numbers per hit that samples.
+template <class Sampler, class Sink>
+CA_HD_INLINE bool sppmPhotonHit(const SceneView& scene, Sampler& sampler, const PathSettings& settings,
+                                uint32_t maxDepth, Float specularBelow, SppmPhotonPath& path, const Hit& hit,
+                                Sink&& sink) {
+    const uint32_t k = path.k;
+    const SurfaceInteraction si = computeInteraction(scene, path.ray, hit);
+    const uint32_t bsdf = scene.shapes[si.shape].bsdf;
+    const Vec3f wo = -normalize(path.ray.d);  // towards where the photon came from
+    if (k >= 2 && !isSpecularBsdf(scene.bsdfs, bsdf, specularBelow)) sink(si, wo, path.flux * path.throughput, k);
+    if (k + 1 >= maxDepth) return false;  // no contribution can follow
+    const Float uLobe = sampler.get1D();
+    const Vec2f uBsdf = sampler.get2D();
+    const Float uRoulette = sampler.get1D();
+    BsdfSample bs;
+    if (!sampleBsdf(scene.bsdfs, bsdf, si, wo, uLobe, uBsdf, bs)) return false;
+    const Float num = std::fabs(dot(wo, si.ns)) * std::fabs(dot(bs.wi, si.ng));
+    const Float den = std::fabs(dot(wo, si.ng)) * std::fabs(dot(bs.wi, si.ns));
+    if (!(den > 0)) return false;
+    path.throughput *= bs.weight * (bs.eta * bs.eta * num / den);
+    const Float tmax = path.throughput.maxValue();
+    if (!(tmax > 0) || !std::isfinite(tmax)) return false;
+    if (k >= uint32_t(settings.rrDepth)) {
+        const Float q = min(tmax, Float(0.95));
+        if (uRoulette >= q) return false;
+        path.throughput *= 1 / q;
+    }
+    path.ray = spawnRay(si.p, si.ng, bs.wi);
+    path.k = k + 1;
+    return sppmPhotonWantsRay(path, maxDepth);
+}
+
 /// Traces one photon path (`maxDepth`: the longest whole path, eye part included; every eye part
 /// has at least one segment) and calls sink(si, wo, flux, k) at every hit k >= 2 segments from
 /// the light whose BSDF is not specular (isSpecularBsdf with `specularBelow`).
 /// Roulette on the photon's throughput relative to its start (the path tracer's rule without η:
 /// photons carry importance-mode weights). Refraction weights are converted from the BSDF's
 /// radiance mode (1/η²) to importance mode (× η²), and shading normals corrected (Veach 1997,
-/// sec. 5.3; pbrt's CorrectShadingNormal).
+/// sec. 5.3; pbrt's CorrectShadingNormal). The passes' packet form (sppm_passes.h,
+/// photonPathGroup) takes the same steps.
 template <class Intersector, class Sampler, class Sink>
 CA_HD void sppmTracePhoton(const SceneView& scene, const Intersector& accel, Sampler& sampler,
                            const PathSettings& settings, uint32_t maxDepth, Float specularBelow, uint32_t& rays,
                            Sink&& sink) {
-    EmissionSample e;
-    const Float uSelect = sampler.get1D();
-    const Vec2f uPos = sampler.get2D();
-    const Vec2f uDir = sampler.get2D();
-    if (!sampleEmission(scene, uSelect, uPos, uDir, e)) return;
-    Ray ray = e.ray;
-    Spectrum throughput(1);
-    for (uint32_t k = 1; k < maxDepth && k <= uint32_t(kSppmDepthCap); ++k) {  // k: segments light -> hit
+    SppmPhotonPath path;
+    if (!sppmStartPhoton(scene, sampler, path)) return;
+    while (sppmPhotonWantsRay(path, maxDepth)) {
         Hit hit;
         ++rays;
-        if (!accel.intersect(ray, hit)) return;
-        const SurfaceInteraction si = computeInteraction(scene, ray, hit);
-        const uint32_t bsdf = scene.shapes[si.shape].bsdf;
-        const Vec3f wo = -normalize(ray.d);  // towards where the photon came from
-        if (k >= 2 && !isSpecularBsdf(scene.bsdfs, bsdf, specularBelow)) sink(si, wo, e.flux * throughput, k);
-        if (k + 1 >= maxDepth) return;  // no contribution can follow
-        const Float uLobe = sampler.get1D();
-        const Vec2f uBsdf = sampler.get2D();
-        const Float uRoulette = sampler.get1D();
-        BsdfSample bs;
-        if (!sampleBsdf(scene.bsdfs, bsdf, si, wo, uLobe, uBsdf, bs)) return;
-        const Float num = std::fabs(dot(wo, si.ns)) * std::fabs(dot(bs.wi, si.ng));
-        const Float den = std::fabs(dot(wo, si.ng)) * std::fabs(dot(bs.wi, si.ns));
-        if (!(den > 0)) return;
-        throughput *= bs.weight * (bs.eta * bs.eta * num / den);
-        const Float tmax = throughput.maxValue();
-        if (!(tmax > 0) || !std::isfinite(tmax)) return;
-        if (k >= uint32_t(settings.rrDepth)) {
-            const Float q = min(tmax, Float(0.95));
-            if (uRoulette >= q) return;
-            throughput *= 1 / q;
-        }
-        ray = spawnRay(si.p, si.ng, bs.wi);
+        if (!accel.intersect(path.ray, hit)) return;
+        if (!sppmPhotonHit(scene, sampler, settings, maxDepth, specularBelow, path, hit, sink)) return;
     }
 }
 

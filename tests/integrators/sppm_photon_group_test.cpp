@@ -11,37 +11,10 @@
 
 #include "caustica/accel/accel.h"
 #include "caustica/integrators/sppm/sppm_passes.h"
-#include "scene/scene_builder.h"
+#include "integrators/lane_test_scene.h"
 
 namespace caustica::test {
 namespace {
-
-/// A closed box x, y in [-1, 1], z in [0, 2] under a ceiling light, a glass and a metal sphere.
-Scene makePhotonScene() {
-    Scene scene;
-    Bsdf white, glass, metal;
-    white.reflectance = Spectrum(0.8f, 0.7f, 0.6f);
-    glass.type = BsdfType::Dielectric;
-    metal.type = BsdfType::Conductor;
-    metal.eta = Spectrum(0.2f, 0.9f, 1.1f);
-    metal.k = Spectrum(3.9f, 2.4f, 2.2f);
-    scene.bsdfs = {white, glass, metal};
-    auto rect = [&](Vec3f o, Vec3f u, Vec3f v) {
-        RectMesh r(o, u, v);
-        return addMesh(scene, r.positions, r.triangles);
-    };
-    rect({-1, -1, 0}, {2, 0, 0}, {0, 0, 2});  // floor
-    rect({-1, 1, 0}, {0, 0, 2}, {2, 0, 0});   // ceiling
-    rect({-1, -1, 0}, {0, 2, 0}, {0, 0, 2});  // left
-    rect({1, -1, 0}, {0, 0, 2}, {0, 2, 0});   // right
-    rect({-1, -1, 2}, {2, 0, 0}, {0, 2, 0});  // back
-    rect({-1, -1, 0}, {0, 2, 0}, {2, 0, 0});  // front
-    addAreaLight(scene, rect({-0.2f, 0.99f, 0.8f}, {0.4f, 0, 0}, {0, 0, 0.4f}), Spectrum(10, 9, 8));
-    scene.shapes[addSphere(scene, {0.3f, -0.5f, 1.0f}, 0.4f)].bsdf = 1;
-    scene.shapes[addSphere(scene, {-0.5f, -0.7f, 1.4f}, 0.3f)].bsdf = 2;
-    finalizeLights(scene);
-    return scene;
-}
 
 using PhotonRecord = std::tuple<Float, Float, Float, Float, Float, Float, Float, Float, Float, Float, uint32_t>;
 
@@ -66,7 +39,7 @@ Traced collect(Trace&& trace) {
 }
 
 TEST(SppmPhotonGroup, SamePhotonsAndRaysAsPathsTracedOneByOne) {
-    const Scene scene = makePhotonScene();
+    const Scene scene = makeLaneTestScene();
     const PathSettings settings;
     for (AccelKind kind : {AccelKind::Embree, AccelKind::Bvh}) {
         const Accel accel(scene, kind);
@@ -88,7 +61,7 @@ TEST(SppmPhotonGroup, SamePhotonsAndRaysAsPathsTracedOneByOne) {
                 ASSERT_EQ(grouped.photons.size(), alone.photons.size()) << accelKindName(kind) << " count " << count;
                 EXPECT_TRUE(grouped.photons == alone.photons) << accelKindName(kind) << " count " << count;
                 if (count >= 300) {
-                    EXPECT_GT(alone.photons.size(), count / 2);  // the scene stores photons
+                    EXPECT_GT(alone.photons.size(), count / 4);  // the scene stores photons
                     EXPECT_GT(alone.rays, count);  // and its paths go on past one hit
                 }
             }

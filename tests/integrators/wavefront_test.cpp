@@ -12,6 +12,7 @@
 
 #include "caustica/accel/accel.h"
 #include "caustica/integrators/pass_driver.h"
+#include "integrators/path_settings_variants.h"
 #include "scene/scene_builder.h"
 
 namespace caustica::test {
@@ -90,22 +91,11 @@ double totalRadiance(const PassResult& r) {
     return sum;
 }
 
-std::vector<PathSettings> settingsVariants() {
-    std::vector<PathSettings> v(6);
-    v[1].maxDepth = 0;
-    v[2].maxDepth = 1;
-    v[3].maxDepth = 2;
-    v[4].maxDepth = 6;
-    v[4].rrDepth = 1;
-    v[5].hideEmitters = true;
-    return v;
-}
-
 TEST(Wavefront, EverySampleEqualsTheMegakernels) {
     const Scene scene = makeTestScene(20);
     for (AccelKind kind : {AccelKind::Embree, AccelKind::Bvh}) {
         const Accel accel(scene, kind);
-        for (const PathSettings& settings : settingsVariants()) {
+        for (const PathSettings& settings : pathSettingsVariants()) {
             PassResult mega = render(scene, accel, settings, false);
             PassResult wave = render(scene, accel, settings, true);
             EXPECT_TRUE(sameBits(mega, wave)) << accelKindName(kind) << " max_depth "

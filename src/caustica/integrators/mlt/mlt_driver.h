@@ -51,10 +51,11 @@ namespace mlt_driver_detail {
 template <class Exec, class Store, class Intersector>
 void bootstrapKernel(Exec exec, const SceneView& scene, const Intersector& accel, const MltStepParams& params,
                      uint64_t first, uint64_t count, float* importance, uint32_t* pixel, uint32_t* rays) {
-    launch(exec, "mlt.bootstrap", count, [=] CA_HD(size_t i) {
-        uint32_t r = 0;
-        importance[i] = bootstrapImportance<Store>(scene, accel, params, first + i, r, pixel[i]);
-        rays[i] = r;
+    constexpr uint64_t G = mltItemsPerLaunch<Intersector>();
+    launch(exec, "mlt.bootstrap", size_t((count + G - 1) / G), [=] CA_HD(size_t g) {
+        const uint64_t i = g * G;
+        const int n = int(min(G, count - i));
+        bootstrapImportances<Store>(scene, accel, params, first + i, n, importance + i, pixel + i, rays + i);
     });
 }
 
@@ -71,9 +72,12 @@ void startKernel(Exec exec, const SceneView& scene, const Intersector& accel, co
 template <class Exec, class Store, class Intersector>
 void proposalKernel(Exec exec, const SceneView& scene, const Intersector& accel, const MltChainView<Store>& chains,
                     const MltStepParams& params) {
-    launch(exec, "mlt.propose", size_t(chains.chains) * params.proposals, [=] CA_HD(size_t item) {
-        traceProposal(scene, accel, chains, params, uint32_t(item));
-    }, 16);
+    constexpr uint32_t G = mltItemsPerLaunch<Intersector>();
+    const uint32_t items = chains.chains * params.proposals;
+    launch(exec, "mlt.propose", size_t((items + G - 1) / G), [=] CA_HD(size_t g) {
+        const uint32_t first = uint32_t(g) * G;
+        traceProposals(scene, accel, chains, params, first, int(min(G, items - first)));
+    }, G > 1 ? 1 : 16);
 }
 
 template <class Exec, class Store>

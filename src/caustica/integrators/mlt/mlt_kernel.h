@@ -5,7 +5,7 @@
 // The target function is I(u) = luminance(F(u)), F(u) the path tracer's radiance estimate for
 // the primary sample vector u (film position from u0, u1, lens from u2, u3; the path from the rest). Each
 // iteration every chain, in lock step:
-//   traceProposal  (one work item per chain and proposal) builds proposal y_j from the current
+//   traceProposals (per chain and proposal; a few side by side) builds proposal y_j from the current
 //                  state x on the fly (small step, or large step with probability pLarge) and
 //                  runs the unchanged path tracer on it;
 //   advanceChain   (one work item per chain) computes a_j = min(1, I(y_j) / I(x)), splats y_j with
@@ -31,6 +31,7 @@
 #include "caustica/integrators/mlt/mlt_splat.h"
 #include "caustica/integrators/mlt/mlt_state.h"
 #include "caustica/integrators/path/path_kernel.h"
+#include "caustica/integrators/path/path_lanes.h"
 #include "caustica/scene/camera.h"
 
 namespace caustica {
@@ -98,35 +99,61 @@ CA_HD_INLINE float mltImportance(const Spectrum& F, Vec2f pos, const MltStepPara
     return p.pixelWeight ? lum * p.pixelWeight[mltPixelOf(pos, p.width, p.height)] : lum;
 }
 
-/// Runs the path tracer on the primary samples `sampler` produces: the film position from the
-/// first two, the lens position from the next two, the path from the rest. Invalid radiance (NaN, Inf, negative) counts as zero.
-template <class Intersector, class Sampler>
-CA_HD Spectrum evaluatePrimarySample(const SceneView& scene, const Intersector& accel, Sampler& sampler,
-                                     const PathSettings& settings, int width, int height, Vec2f& pos,
-                                     uint32_t& rays) {
+/// The camera ray of a primary sample: the film position from its first two numbers, the lens
+/// position from the next two (drawn always, a fixed layout; used by a thin lens only).
+template <class Sampler>
+CA_HD_INLINE Ray primaryCameraRay(const SceneView& scene, Sampler& sampler, int width, int height, Vec2f& pos) {
     const Vec2f u = sampler.get2D();
     pos = Vec2f(u.x * Float(width), u.y * Float(height));
-    const Vec2f lens = sampler.get2D();  // used by a thin lens only; drawn always (fixed layout)
-    Spectrum L = pathRadiance(scene, accel, sampler, generateCameraRay(scene.camera, pos, lens), settings, rays);
-    return L.isValid() ? L : Spectrum(0);
+    const Vec2f lens = sampler.get2D();
+    return generateCameraRay(scene.camera, pos, lens);
 }
 
-/// traceProposal for work item `item` = chain * k + j.
+/// Runs the path tracer on the primary samples of samplers[0..n) (n <= pathLaneCount<I>(), the
+/// paths side by side: path_lanes.h): F[j] from the film position pos[j], the lens position and
+/// the path from the rest, rays[j] its rays. Invalid radiance (NaN, Inf, negative) counts as zero.
+template <class Intersector, class Sampler>
+CA_HD void evaluatePrimarySamples(const SceneView& scene, const Intersector& accel, Sampler* samplers, int n,
+                                  const PathSettings& settings, int width, int height, Vec2f* pos, Spectrum* F,
+                                  uint32_t* rays) {
+    Ray cameraRays[pathLaneCount<Intersector>()];
+    for (int j = 0; j < n; ++j) cameraRays[j] = primaryCameraRay(scene, samplers[j], width, height, pos[j]);
+    pathRadianceLanes(scene, accel, samplers, cameraRays, n, settings, F, rays);
+    for (int j = 0; j < n; ++j)
+        if (!F[j].isValid()) F[j] = Spectrum(0);
+}
+
+/// Work items per launch item of the proposal and bootstrap kernels: the paths traced side by side.
+template <class Intersector>
+constexpr uint32_t mltItemsPerLaunch() {
+    return uint32_t(pathLaneCount<Intersector>());
+}
+
+/// Builds and traces proposals [first, first + n) (item = chain * k + j; n <=
+/// mltItemsPerLaunch<I>()), each from its chain's current state and its own stream.
 template <class Store, class Intersector>
-CA_HD void traceProposal(const SceneView& scene, const Intersector& accel, const MltChainView<Store>& v,
-                         const MltStepParams& p, uint32_t item) {
-    const uint32_t chain = item / p.proposals, j = item % p.proposals;
-    const uint64_t key = mltProposalKey(p.seed, p.chainOffset + chain, p.iteration, j);
-    MltProposalSampler<Store> sampler(&v.store, chain, v.usedDims[chain], key,
-                                      mltIsLargeStep(key, p.largeStepProbability), p.mutation);
-    uint32_t rays = 0;
-    Vec2f pos;
-    const Spectrum F = evaluatePrimarySample(scene, accel, sampler, p.path, p.width, p.height, pos, rays);
-    v.proposalDims[item] = uint16_t(min(sampler.dimension(), v.store.dims));
-    v.proposalPos[item] = pos;
-    v.proposalValue[item] = F;
-    v.proposalImportance[item] = mltImportance(F, pos, p);
-    v.proposalRays[item] = rays;
+CA_HD void traceProposals(const SceneView& scene, const Intersector& accel, const MltChainView<Store>& v,
+                          const MltStepParams& p, uint32_t first, int n) {
+    constexpr int L = pathLaneCount<Intersector>();
+    MltProposalSampler<Store> samplers[L];
+    for (int l = 0; l < n; ++l) {
+        const uint32_t item = first + uint32_t(l), chain = item / p.proposals, j = item % p.proposals;
+        const uint64_t key = mltProposalKey(p.seed, p.chainOffset + chain, p.iteration, j);
+        samplers[l] = MltProposalSampler<Store>(&v.store, chain, v.usedDims[chain], key,
+                                                mltIsLargeStep(key, p.largeStepProbability), p.mutation);
+    }
+    Vec2f pos[L];
+    Spectrum F[L];
+    uint32_t rays[L];
+    evaluatePrimarySamples(scene, accel, samplers, n, p.path, p.width, p.height, pos, F, rays);
+    for (int l = 0; l < n; ++l) {
+        const uint32_t item = first + uint32_t(l);
+        v.proposalDims[item] = uint16_t(min(samplers[l].dimension(), v.store.dims));
+        v.proposalPos[item] = pos[l];
+        v.proposalValue[item] = F[l];
+        v.proposalImportance[item] = mltImportance(F[l], pos[l], p);
+        v.proposalRays[item] = rays[l];
+    }
 }
 
 /// What a point with value F, importance I and combined weight w splats (see the header).
@@ -195,16 +222,24 @@ CA_HD void advanceChain(const MltChainView<Store>& v, const MltStepParams& p, ui
     v.importance[chain] = v.proposalImportance[item];
 }
 
-/// Bootstrap sample i (an ordinary Monte Carlo path from fresh primary samples): its importance
-/// under p's target, and the pixel it falls in.
+/// Bootstrap samples first .. first + n - 1 (n <= mltItemsPerLaunch<I>(); ordinary Monte Carlo
+/// paths from fresh primary samples): importance[l] under p's target, pixel[l] the pixel it falls
+/// in and rays[l] its rays, for sample first + l.
 template <class Store, class Intersector>
-CA_HD float bootstrapImportance(const SceneView& scene, const Intersector& accel, const MltStepParams& p,
-                                uint64_t i, uint32_t& rays, uint32_t& pixel) {
-    MltProposalSampler<Store> sampler(nullptr, 0, 0, mltBootstrapKey(p.seed, i), true, p.mutation);
-    Vec2f pos;
-    const Spectrum F = evaluatePrimarySample(scene, accel, sampler, p.path, p.width, p.height, pos, rays);
-    pixel = mltPixelOf(pos, p.width, p.height);
-    return mltImportance(F, pos, p);
+CA_HD void bootstrapImportances(const SceneView& scene, const Intersector& accel, const MltStepParams& p,
+                                uint64_t first, int n, float* importance, uint32_t* pixel, uint32_t* rays) {
+    constexpr int L = pathLaneCount<Intersector>();
+    MltProposalSampler<Store> samplers[L];
+    for (int l = 0; l < n; ++l)
+        samplers[l] = MltProposalSampler<Store>(nullptr, 0, 0, mltBootstrapKey(p.seed, first + uint64_t(l)), true,
+                                                p.mutation);
+    Vec2f pos[L];
+    Spectrum F[L];
+    evaluatePrimarySamples(scene, accel, samplers, n, p.path, p.width, p.height, pos, F, rays);
+    for (int l = 0; l < n; ++l) {
+        pixel[l] = mltPixelOf(pos[l], p.width, p.height);
+        importance[l] = mltImportance(F[l], pos[l], p);
+    }
 }
 
 /// Starts `chain` at bootstrap sample i: stores its primary samples and re-traces it for F.
@@ -213,7 +248,10 @@ CA_HD void startChain(const SceneView& scene, const Intersector& accel, const Ml
                       const MltStepParams& p, uint32_t chain, uint64_t i, uint32_t& rays) {
     MltProposalSampler<Store> sampler(nullptr, 0, 0, mltBootstrapKey(p.seed, i), true, p.mutation);
     Vec2f pos;
-    const Spectrum F = evaluatePrimarySample(scene, accel, sampler, p.path, p.width, p.height, pos, rays);
+    Spectrum F;
+    uint32_t traced = 0;
+    evaluatePrimarySamples(scene, accel, &sampler, 1, p.path, p.width, p.height, &pos, &F, &traced);
+    rays += traced;
     const uint32_t used = min(sampler.dimension(), v.store.dims);
     for (uint32_t d = 0; d < used; ++d) v.store.set(chain, d, sampler.raw(d));
     v.usedDims[chain] = uint16_t(used);

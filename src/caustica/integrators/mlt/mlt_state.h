@@ -148,6 +148,8 @@ struct FloatChainStore {
 template <class Store>
 class MltProposalSampler {
 public:
+    /// A sampler to assign to (the lanes of a work item that traces several proposals).
+    MltProposalSampler() = default;
     CA_HD MltProposalSampler(const Store* store, uint32_t chain, uint32_t currentDims, uint64_t key,
                              bool largeStep, const MltMutation& mutation)
         : store_(store), chain_(chain), current_(store ? min(currentDims, store->dims) : 0), key_(key),
@@ -170,11 +172,11 @@ public:
     CA_HD uint32_t dimension() const { return dim_; }
 
 private:
-    const Store* store_;
-    uint32_t chain_;
-    uint32_t current_;  // coordinates of the current state that may be perturbed
-    uint64_t key_;
-    bool large_;
+    const Store* store_ = nullptr;
+    uint32_t chain_ = 0;
+    uint32_t current_ = 0;  // coordinates of the current state that may be perturbed
+    uint64_t key_ = 0;
+    bool large_ = true;
     KelemenStep step_;
     uint32_t dim_ = 0;
 };

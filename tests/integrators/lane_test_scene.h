@@ -1,8 +1,9 @@
 // lane_test_scene.h — the scene of the tests of paths traced side by side (path_lanes_test.cpp,
-// sppm_photon_group_test.cpp): a diffuse box (its walls one-sided) under a ceiling area light, with
+// sppm_lanes_test.cpp): a diffuse box (its walls one-sided) under a ceiling area light, with
 // a glass and a metal sphere, a point light and a constant environment.
 #pragma once
 
+#include "caustica/accel/embree_accel.h"
 #include "caustica/scene/scene.h"
 #include "scene/scene_builder.h"
 
@@ -39,5 +40,13 @@ inline Scene makeLaneTestScene() {
     scene.camera.tanHalfX = scene.camera.tanHalfY = 0.6f;
     return scene;
 }
+
+/// Embree answering single rays only: a packet of one, so the kernels that trace paths side by
+/// side trace them one by one (their reference in the tests).
+struct SingleRayEmbree {
+    EmbreeIntersector embree;
+    bool intersect(const Ray& ray, Hit& hit) const { return embree.intersect(ray, hit); }
+    bool occluded(const Ray& ray) const { return embree.occluded(ray); }
+};
 
 }  // namespace caustica::test

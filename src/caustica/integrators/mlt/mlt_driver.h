@@ -54,7 +54,7 @@ void bootstrapKernel(Exec exec, const SceneView& scene, const Intersector& accel
     constexpr uint64_t G = mltItemsPerLaunch<Intersector>();
     launch(exec, "mlt.bootstrap", size_t((count + G - 1) / G), [=] CA_HD(size_t g) {
         const uint64_t i = g * G;
-        const int n = int(min(G, count - i));
+        const uint32_t n = uint32_t(min(G, count - i));
         bootstrapImportances<Store>(scene, accel, params, first + i, n, importance + i, pixel + i, rays + i);
     });
 }
@@ -76,7 +76,7 @@ void proposalKernel(Exec exec, const SceneView& scene, const Intersector& accel,
     const uint32_t items = chains.chains * params.proposals;
     launch(exec, "mlt.propose", size_t((items + G - 1) / G), [=] CA_HD(size_t g) {
         const uint32_t first = uint32_t(g) * G;
-        traceProposals(scene, accel, chains, params, first, int(min(G, items - first)));
+        traceProposals(scene, accel, chains, params, first, min(G, items - first));
     }, G > 1 ? 1 : 16);
 }
 

@@ -5,7 +5,7 @@
 // The target function is I(u) = luminance(F(u)), F(u) the path tracer's radiance estimate for
 // the primary sample vector u (film position from u0, u1, lens from u2, u3; the path from the rest). Each
 // iteration every chain, in lock step:
-//   traceProposals (per chain and proposal; a few side by side) builds proposal y_j from the current
+//   traceProposals (per chain and proposal; side by side in groups) builds proposal y_j from the current
 //                  state x on the fly (small step, or large step with probability pLarge) and
 //                  runs the unchanged path tracer on it;
 //   advanceChain   (one work item per chain) computes a_j = min(1, I(y_j) / I(x)), splats y_j with
@@ -109,51 +109,51 @@ CA_HD_INLINE Ray primaryCameraRay(const SceneView& scene, Sampler& sampler, int 
     return generateCameraRay(scene.camera, pos, lens);
 }
 
-/// Runs the path tracer on the primary samples of samplers[0..n) (n <= pathLaneCount<I>(), the
-/// paths side by side: path_lanes.h): F[j] from the film position pos[j], the lens position and
-/// the path from the rest, rays[j] its rays. Invalid radiance (NaN, Inf, negative) counts as zero.
+/// A path's radiance as the target sees it: invalid radiance (NaN, Inf, negative) counts as zero.
+CA_HD_INLINE Spectrum mltValidRadiance(const Spectrum& L) { return L.isValid() ? L : Spectrum(0); }
+
+/// Runs the path tracer on the primary samples `sampler` produces: the film position from the
+/// first two (pos), the lens position from the next two, the path from the rest.
 template <class Intersector, class Sampler>
-CA_HD void evaluatePrimarySamples(const SceneView& scene, const Intersector& accel, Sampler* samplers, int n,
-                                  const PathSettings& settings, int width, int height, Vec2f* pos, Spectrum* F,
-                                  uint32_t* rays) {
-    Ray cameraRays[pathLaneCount<Intersector>()];
-    for (int j = 0; j < n; ++j) cameraRays[j] = primaryCameraRay(scene, samplers[j], width, height, pos[j]);
-    pathRadianceLanes(scene, accel, samplers, cameraRays, n, settings, F, rays);
-    for (int j = 0; j < n; ++j)
-        if (!F[j].isValid()) F[j] = Spectrum(0);
+CA_HD Spectrum evaluatePrimarySample(const SceneView& scene, const Intersector& accel, Sampler& sampler,
+                                     const PathSettings& settings, int width, int height, Vec2f& pos,
+                                     uint32_t& rays) {
+    const Ray cameraRay = primaryCameraRay(scene, sampler, width, height, pos);
+    return mltValidRadiance(pathRadiance(scene, accel, sampler, cameraRay, settings, rays));
 }
 
-/// Work items per launch item of the proposal and bootstrap kernels: the paths traced side by side.
+/// Work items of the proposal and bootstrap kernels per launch item: a group traced side by side
+/// where the intersector answers packets (path_lanes.h), else one.
 template <class Intersector>
 constexpr uint32_t mltItemsPerLaunch() {
-    return uint32_t(pathLaneCount<Intersector>());
+    return laneCount<Intersector>() > 1 ? 64u : 1u;
 }
 
 /// Builds and traces proposals [first, first + n) (item = chain * k + j; n <=
-/// mltItemsPerLaunch<I>()), each from its chain's current state and its own stream.
+/// mltItemsPerLaunch<I>()), each from its chain's current state with its own stream, the paths
+/// side by side (tracePathsSideBySide: each as evaluatePrimarySample would trace it).
 template <class Store, class Intersector>
 CA_HD void traceProposals(const SceneView& scene, const Intersector& accel, const MltChainView<Store>& v,
-                          const MltStepParams& p, uint32_t first, int n) {
-    constexpr int L = pathLaneCount<Intersector>();
-    MltProposalSampler<Store> samplers[L];
-    for (int l = 0; l < n; ++l) {
-        const uint32_t item = first + uint32_t(l), chain = item / p.proposals, j = item % p.proposals;
-        const uint64_t key = mltProposalKey(p.seed, p.chainOffset + chain, p.iteration, j);
-        samplers[l] = MltProposalSampler<Store>(&v.store, chain, v.usedDims[chain], key,
+                          const MltStepParams& p, uint32_t first, uint32_t n) {
+    Vec2f pos[mltItemsPerLaunch<Intersector>()];
+    tracePathsSideBySide<Intersector, MltProposalSampler<Store>>(
+        scene, accel, p.path, n,
+        [&](size_t l, MltProposalSampler<Store>& sampler) {
+            const uint32_t item = first + uint32_t(l), chain = item / p.proposals, j = item % p.proposals;
+            const uint64_t key = mltProposalKey(p.seed, p.chainOffset + chain, p.iteration, j);
+            sampler = MltProposalSampler<Store>(&v.store, chain, v.usedDims[chain], key,
                                                 mltIsLargeStep(key, p.largeStepProbability), p.mutation);
-    }
-    Vec2f pos[L];
-    Spectrum F[L];
-    uint32_t rays[L];
-    evaluatePrimarySamples(scene, accel, samplers, n, p.path, p.width, p.height, pos, F, rays);
-    for (int l = 0; l < n; ++l) {
-        const uint32_t item = first + uint32_t(l);
-        v.proposalDims[item] = uint16_t(min(samplers[l].dimension(), v.store.dims));
-        v.proposalPos[item] = pos[l];
-        v.proposalValue[item] = F[l];
-        v.proposalImportance[item] = mltImportance(F[l], pos[l], p);
-        v.proposalRays[item] = rays[l];
-    }
+            return primaryCameraRay(scene, sampler, p.width, p.height, pos[l]);
+        },
+        [&](size_t l, const MltProposalSampler<Store>& sampler, const Spectrum& L, uint32_t rays) {
+            const uint32_t item = first + uint32_t(l);
+            const Spectrum F = mltValidRadiance(L);
+            v.proposalDims[item] = uint16_t(min(sampler.dimension(), v.store.dims));
+            v.proposalPos[item] = pos[l];
+            v.proposalValue[item] = F;
+            v.proposalImportance[item] = mltImportance(F, pos[l], p);
+            v.proposalRays[item] = rays;
+        });
 }
 
 /// What a point with value F, importance I and combined weight w splats (see the header).
@@ -223,23 +223,23 @@ CA_HD void advanceChain(const MltChainView<Store>& v, const MltStepParams& p, ui
 }
 
 /// Bootstrap samples first .. first + n - 1 (n <= mltItemsPerLaunch<I>(); ordinary Monte Carlo
-/// paths from fresh primary samples): importance[l] under p's target, pixel[l] the pixel it falls
-/// in and rays[l] its rays, for sample first + l.
+/// paths from fresh primary samples, side by side): importance[l] under p's target, pixel[l] the
+/// pixel it falls in and rays[l] its rays, for sample first + l.
 template <class Store, class Intersector>
 CA_HD void bootstrapImportances(const SceneView& scene, const Intersector& accel, const MltStepParams& p,
-                                uint64_t first, int n, float* importance, uint32_t* pixel, uint32_t* rays) {
-    constexpr int L = pathLaneCount<Intersector>();
-    MltProposalSampler<Store> samplers[L];
-    for (int l = 0; l < n; ++l)
-        samplers[l] = MltProposalSampler<Store>(nullptr, 0, 0, mltBootstrapKey(p.seed, first + uint64_t(l)), true,
-                                                p.mutation);
-    Vec2f pos[L];
-    Spectrum F[L];
-    evaluatePrimarySamples(scene, accel, samplers, n, p.path, p.width, p.height, pos, F, rays);
-    for (int l = 0; l < n; ++l) {
-        pixel[l] = mltPixelOf(pos[l], p.width, p.height);
-        importance[l] = mltImportance(F[l], pos[l], p);
-    }
+                                uint64_t first, uint32_t n, float* importance, uint32_t* pixel, uint32_t* rays) {
+    Vec2f pos[mltItemsPerLaunch<Intersector>()];
+    tracePathsSideBySide<Intersector, MltProposalSampler<Store>>(
+        scene, accel, p.path, n,
+        [&](size_t l, MltProposalSampler<Store>& sampler) {
+            sampler = MltProposalSampler<Store>(nullptr, 0, 0, mltBootstrapKey(p.seed, first + l), true, p.mutation);
+            return primaryCameraRay(scene, sampler, p.width, p.height, pos[l]);
+        },
+        [&](size_t l, const MltProposalSampler<Store>&, const Spectrum& L, uint32_t traced) {
+            pixel[l] = mltPixelOf(pos[l], p.width, p.height);
+            importance[l] = mltImportance(mltValidRadiance(L), pos[l], p);
+            rays[l] = traced;
+        });
 }
 
 /// Starts `chain` at bootstrap sample i: stores its primary samples and re-traces it for F.
@@ -248,10 +248,7 @@ CA_HD void startChain(const SceneView& scene, const Intersector& accel, const Ml
                       const MltStepParams& p, uint32_t chain, uint64_t i, uint32_t& rays) {
     MltProposalSampler<Store> sampler(nullptr, 0, 0, mltBootstrapKey(p.seed, i), true, p.mutation);
     Vec2f pos;
-    Spectrum F;
-    uint32_t traced = 0;
-    evaluatePrimarySamples(scene, accel, &sampler, 1, p.path, p.width, p.height, &pos, &F, &traced);
-    rays += traced;
+    const Spectrum F = evaluatePrimarySample(scene, accel, sampler, p.path, p.width, p.height, pos, rays);
     const uint32_t used = min(sampler.dimension(), v.store.dims);
     for (uint32_t d = 0; d < used; ++d) v.store.set(chain, d, sampler.raw(d));
     v.usedDims[chain] = uint16_t(used);

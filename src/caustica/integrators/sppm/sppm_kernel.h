@@ -104,70 +104,96 @@ CA_HD_INLINE uint32_t sppmMaxDepth(const PathSettings& settings, uint32_t cap) {
     return settings.maxDepth < 0 ? cap : uint32_t(settings.maxDepth);
 }
 
-/// The eye path of one pixel: Ld (returned) and the visible point (`hasPoint`). `cap` bounds the
-/// segments traced when max_depth is unbounded. Uses the path tracer's shadeHit for every vertex
-/// (emission, NEE + MIS, BSDF sampling, roulette), so no light-transport rule is restated here.
-/// `specularBelow`: the roughness threshold of isSpecularBsdf. `emitters`: the BSDF sample at the
-/// visible point is traced only when it may reach an emitter (emitter_boxes.h; a ray that passes
-/// no emitter's box would find no emission, so the image is the same).
+/// An eye path between two of its rays (sppmEyeHit): the path tracer's state, the settings with
+/// max_depth bounded, and whether the ray to trace next is the visible point's emission check.
+struct SppmEyeState {
+    PathState path;
+    PathSettings bounded;
+    bool emissionCheck = false;
+};
+
+/// Starts the eye path of `cameraRay` (max_depth bounded by `cap`); false: it traces nothing.
+CA_HD_INLINE bool sppmStartEye(SppmEyeState& eye, const Ray& cameraRay, const PathSettings& settings, uint32_t cap) {
+    eye.bounded = settings;
+    if (eye.bounded.maxDepth < 0) eye.bounded.maxDepth = int(cap);
+    eye.emissionCheck = false;
+    return startPath(eye.path, cameraRay, eye.bounded);
+}
+
+/// What the eye path does at the closest hit of eye.path.ray (`hit`; nullptr: a miss): the path
+/// tracer's shadeHit for every vertex (emission, NEE + MIS, BSDF sampling, roulette), its NEE
+/// sample in `shadow` when `hasShadow` (the caller tests it and adds it with addShadowContribution
+/// before the next step); at the first non-specular vertex the visible point (`vp`, `hasPoint`),
+/// after which the BSDF sample is traced once more, as the emission check, only when it may
+/// reach an emitter (emitter_boxes.h; a ray that passes no emitter's box would find no emission,
+/// so the image is the same). Returns whether the path traces eye.path.ray next.
+template <class Sampler>
+CA_HD bool sppmEyeHit(const SceneView& scene, Sampler& sampler, Float specularBelow, const EmitterBoxes& emitters,
+                      SppmEyeState& eye, const Hit* hit, ShadowRay& shadow, bool& hasShadow, SppmVisiblePoint& vp,
+                      bool& hasPoint) {
+    PathState& path = eye.path;
+    hasShadow = false;
+    if (eye.emissionCheck) {
+        // shadeHit with max_depth = depth + 1 adds the emission at this hit and stops, so a hit
+        // on a shape that emits nothing adds nothing and needs no interaction.
+        PathSettings emissionOnly = eye.bounded;
+        emissionOnly.maxDepth = int(path.depth + 1);
+        if (!hit) {
+            missPath(scene, path, emissionOnly);
+        } else if (scene.shapes[scene.shapeOf(hit->primId)].light >= 0) {
+            ShadowRay unused;
+            bool unusedFlag;
+            shadeHit(scene, path, *hit, sampler, emissionOnly, unused, unusedFlag);
+        }
+        return false;
+    }
+    if (!hit) {
+        missPath(scene, path, eye.bounded);
+        return false;
+    }
+    const Spectrum betaHere = path.throughput;
+    const Vec3f woHere = -normalize(path.ray.d);
+    const uint32_t depthHere = path.depth + 1;  // segments from the camera to this hit
+    const uint32_t bsdf = scene.shapes[scene.shapeOf(hit->primId)].bsdf;
+    const bool specular = isSpecularBsdf(scene.bsdfs, bsdf, specularBelow);
+    // Emission, NEE (MIS) and the BSDF sample, as the path tracer does at this vertex; the
+    // interaction is built once and kept for the visible point.
+    const SurfaceInteraction si = computeInteraction(scene, path.ray, *hit);
+    const bool alive = shadeHitAt(scene, path, si, sampler, eye.bounded, shadow, hasShadow);
+    if (specular) return alive;
+    vp.si = si;
+    vp.wo = woHere;
+    vp.beta = betaHere;
+    vp.bsdf = bsdf;
+    vp.depth = depthHere;
+    hasPoint = !betaHere.isBlack();
+    eye.emissionCheck = alive && emitters.mayHitEmitter(path.ray);
+    return eye.emissionCheck;
+}
+
+/// The eye path of one pixel: Ld (returned) and the visible point (`hasPoint`), by sppmEyeHit's
+/// steps. `cap` bounds the segments traced when max_depth is unbounded. `specularBelow`: the
+/// roughness threshold of isSpecularBsdf.
 template <class Intersector, class Sampler>
 CA_HD Spectrum sppmEyePath(const SceneView& scene, const Intersector& accel, Sampler& sampler, const Ray& cameraRay,
                            const PathSettings& settings, uint32_t cap, Float specularBelow,
                            const EmitterBoxes& emitters, SppmVisiblePoint& vp, bool& hasPoint, uint32_t& rays) {
     hasPoint = false;
-    PathSettings bounded = settings;
-    if (bounded.maxDepth < 0) bounded.maxDepth = int(cap);
-    PathState path;
-    if (!startPath(path, cameraRay, bounded)) return path.radiance;
+    SppmEyeState eye;
+    if (!sppmStartEye(eye, cameraRay, settings, cap)) return eye.path.radiance;
     for (;;) {
         Hit hit;
         ++rays;
-        if (!accel.intersect(path.ray, hit)) {
-            missPath(scene, path, bounded);
-            return path.radiance;
-        }
-        const Spectrum betaHere = path.throughput;
-        const Vec3f woHere = -normalize(path.ray.d);
-        const uint32_t depthHere = path.depth + 1;  // segments from the camera to this hit
+        const bool found = accel.intersect(eye.path.ray, hit);
         ShadowRay shadow;
-        bool hasShadow = false;
-        const uint32_t bsdf = scene.shapes[scene.shapeOf(hit.primId)].bsdf;
-        const bool specular = isSpecularBsdf(scene.bsdfs, bsdf, specularBelow);
-        // Emission, NEE (MIS) and the BSDF sample, as the path tracer does at this vertex; the
-        // interaction is built once and kept for the visible point.
-        const SurfaceInteraction si = computeInteraction(scene, path.ray, hit);
-        const bool alive = shadeHitAt(scene, path, si, sampler, bounded, shadow, hasShadow);
+        bool hasShadow;
+        const bool more =
+            sppmEyeHit(scene, sampler, specularBelow, emitters, eye, found ? &hit : nullptr, shadow, hasShadow, vp, hasPoint);
         if (hasShadow) {
             ++rays;
-            addShadowContribution(path, shadow, accel.occluded(shadow.ray));
+            addShadowContribution(eye.path, shadow, accel.occluded(shadow.ray));
         }
-        if (!specular) {
-            // The visible point, and the emitter found by the BSDF sample (MIS weight vs NEE):
-            // shadeHit with max_depth = depth + 1 adds the emission at the next hit and stops, so
-            // a hit on a shape that emits nothing adds nothing and needs no interaction.
-            vp.si = si;
-            vp.wo = woHere;
-            vp.beta = betaHere;
-            vp.bsdf = bsdf;
-            vp.depth = depthHere;
-            hasPoint = !betaHere.isBlack();
-            if (alive && emitters.mayHitEmitter(path.ray)) {
-                Hit next;
-                ++rays;
-                PathSettings emissionOnly = bounded;
-                emissionOnly.maxDepth = int(path.depth + 1);
-                if (accel.intersect(path.ray, next)) {
-                    if (scene.shapes[scene.shapeOf(next.primId)].light < 0) return path.radiance;
-                    ShadowRay unused;
-                    bool unusedFlag;
-                    shadeHit(scene, path, next, sampler, emissionOnly, unused, unusedFlag);
-                } else {
-                    missPath(scene, path, emissionOnly);
-                }
-            }
-            return path.radiance;
-        }
-        if (!alive) return path.radiance;
+        if (!more) return eye.path.radiance;
     }
 }
 

@@ -4,9 +4,9 @@
 
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
 
-#include "caustica/accel/intersector.h"
-#include "caustica/integrators/hit_prefetch.h"
+#include "caustica/integrators/lanes.h"
 #include "caustica/integrators/megakernel_pass.h"
 #include "caustica/integrators/sppm/sppm_kernel.h"
 #include "caustica/integrators/sppm/sppm_photon.h"
@@ -27,31 +27,122 @@ struct EyeSampling {
     Spectrum* radiance = nullptr; // set: each entry's radiance goes here instead (addRadiance adds it)
 };
 
+/// Where eye pass entry s puts its results (eyePass).
+struct EyeOutputs {
+    EyeSampling sampling;
+    SppmPixel* stats;
+    SppmVisiblePoint* points;
+    uint32_t* flags;
+    uint32_t* rays;
+
+    CA_HD void write(size_t s, const Spectrum& L, SppmVisiblePoint vp, bool has, uint32_t count) const {
+        if (sampling.radiance)
+            sampling.radiance[s] = L;
+        else if (sampling.addLd)
+            sppmAddLd(stats[s], L);
+        vp.stat = uint32_t(s);
+        points[s] = vp;
+        flags[s] = has ? 1u : 0u;
+        rays[s] = count;
+    }
+};
+
+/// Entry s's camera sample: sppm one per pixel with sample index = iteration; ppm `perPixel`
+/// per pixel, entry s = pixel · perPixel + j with sample index j.
+CA_HD_INLINE CameraSample eyeCameraSample(const Camera& camera, const EyeSampling& sampling, int width, uint64_t seed,
+                                          size_t s) {
+    const size_t pixel = s / sampling.perPixel;
+    const uint64_t sample = sampling.fixedHitpoints ? uint64_t(s % sampling.perPixel) : sampling.iteration;
+    return cameraSample(camera, pixel, width, sample, seed);
+}
+
+/// traceLanes' policy for eye pass entries first + item (eyePass).
+template <int L>
+struct EyeLanes {
+    const SceneView& view;
+    const PathSettings& path;
+    Float specularBelow;
+    const EmitterBoxes& emitters;
+    uint64_t seed;
+    int width;
+    size_t first;
+    const EyeOutputs& out;
+    SppmEyeState eyes[L];
+    IndependentSampler samplers[L];
+    ShadowRay shadows[L];
+    SppmVisiblePoint points[L];
+    bool hasPoint[L];
+    uint32_t rays[L];
+    size_t entries[L];
+
+    CA_HD bool begin(int lane, size_t item) {
+        const size_t s = first + item;
+        const CameraSample c = eyeCameraSample(view.camera, out.sampling, width, seed, s);
+        samplers[lane] = c.sampler;
+        points[lane] = SppmVisiblePoint{};
+        hasPoint[lane] = false;
+        rays[lane] = 0;
+        entries[lane] = s;
+        if (sppmStartEye(eyes[lane], c.ray, path, uint32_t(kSppmDepthCap))) return true;
+        end(lane);
+        return false;
+    }
+    CA_HD const Ray& ray(int lane) const { return eyes[lane].path.ray; }
+    CA_HD bool hit(int lane, const Hit* hit, const Ray*& shadow) {
+        ++rays[lane];
+        bool hasShadow = false;
+        const bool more = sppmEyeHit(view, samplers[lane], specularBelow, emitters, eyes[lane], hit, shadows[lane],
+                                     hasShadow, points[lane], hasPoint[lane]);
+        if (hasShadow) shadow = &shadows[lane].ray;
+        return more;
+    }
+    CA_HD void shadow(int lane, bool occluded) {
+        ++rays[lane];
+        addShadowContribution(eyes[lane].path, shadows[lane], occluded);
+    }
+    CA_HD void end(int lane) {
+        out.write(entries[lane], eyes[lane].path.radiance, points[lane], hasPoint[lane], rays[lane]);
+    }
+    CA_HD void move(int from, int to) {
+        eyes[to] = eyes[from];
+        samplers[to] = samplers[from];
+        shadows[to] = shadows[from];
+        points[to] = points[from];
+        hasPoint[to] = hasPoint[from];
+        rays[to] = rays[from];
+        entries[to] = entries[from];
+    }
+};
+
+/// The eye pass: entry s's eye path (sppmEyePath), its Ld, visible point, flag and rays. With
+/// Embree on the host a work item takes 64 entries, 16 in flight (lanes.h), each path bit for bit
+/// its sppmEyePath.
 template <class Exec, class Intersector>
 void eyePass(Exec exec, const SceneView& view, const Intersector& accel, PathSettings path, Float specularBelow,
              EmitterBoxes emitters, uint64_t seed, EyeSampling sampling, int width, size_t entries, SppmPixel* stats,
              SppmVisiblePoint* points, uint32_t* flags, uint32_t* rays) {
+    constexpr size_t G = laneCount<Intersector>() > 1 ? 64 : 1;
+    const EyeOutputs out{sampling, stats, points, flags, rays};
     launch(
-        exec, "sppm.eye", entries,
-        [=] CA_HD(size_t s) {
-            const size_t pixel = s / sampling.perPixel;
-            const uint64_t sample = sampling.fixedHitpoints ? uint64_t(s % sampling.perPixel) : sampling.iteration;
-            CameraSample c = cameraSample(view.camera, pixel, width, sample, seed);
-            SppmVisiblePoint vp;
-            bool has = false;
-            uint32_t count = 0;
-            const Spectrum L = sppmEyePath(view, accel, c.sampler, c.ray, path, uint32_t(kSppmDepthCap),
-                                           specularBelow, emitters, vp, has, count);
-            if (sampling.radiance)
-                sampling.radiance[s] = L;
-            else if (sampling.addLd)
-                sppmAddLd(stats[s], L);
-            vp.stat = uint32_t(s);
-            points[s] = vp;
-            flags[s] = has ? 1u : 0u;
-            rays[s] = count;
+        exec, "sppm.eye", (entries + G - 1) / G,
+        [=] CA_HD(size_t g) {
+            constexpr int L = laneCount<Intersector>();
+            if constexpr (L == 1) {
+                const size_t s = g;
+                CameraSample c = eyeCameraSample(view.camera, out.sampling, width, seed, s);
+                SppmVisiblePoint vp;
+                bool has = false;
+                uint32_t count = 0;
+                const Spectrum radiance = sppmEyePath(view, accel, c.sampler, c.ray, path, uint32_t(kSppmDepthCap),
+                                                      specularBelow, emitters, vp, has, count);
+                out.write(s, radiance, vp, has, count);
+            } else {
+                const size_t first = g * G;
+                EyeLanes<L> lanes{view, path, specularBelow, emitters, seed, width, first, out};
+                traceLanes(view, accel, min(G, entries - first), lanes);
+            }
         },
-        16);
+        G > 1 ? 1 : 16);
 }
 
 /// Adds the radiance an eye pass kept aside (EyeSampling::radiance) to the entries' Ld.
@@ -127,70 +218,57 @@ CA_HD void photonPath(const SceneView& view, const Intersector& accel, size_t i,
 /// packets of rays (Embree on the host), else one (a GPU thread, the own BVH).
 template <class Intersector>
 constexpr size_t photonPathsPerItem() {
-    return rayPacketSize<Intersector>() > 1 ? 64 : 1;
+    return laneCount<Intersector>() > 1 ? 64 : 1;
 }
 
-/// Photon paths [first, first + count) with up to rayPacketSize<I>() of them in flight: their
-/// next segments are traced as one packet query, then each lane takes its hit as sppmTracePhoton
-/// would (sppmPhotonHit, its own stream), and a path that ends hands its lane to the next path of
-/// the range. Every path makes the same photons as traced alone; only the order of the sink's
-/// calls differs. The hits' triangles are prefetched before the lanes shade them. With packets of
-/// one ray it is photonPath for each. Rays are counted in block first / 1024.
+/// traceLanes' policy for photon paths first + item of a pass (photonPathGroup).
+template <int L, class Sink>
+struct PhotonLanes {
+    const SceneView& view;
+    const PathSettings& path;
+    uint32_t maxDepth;
+    Float specularBelow;
+    uint64_t iteration, seed;
+    size_t first;
+    Sink& sink;
+    SppmPhotonPath paths[L];
+    IndependentSampler samplers[L];
+    uint32_t rays = 0;
+
+    CA_HD bool begin(int lane, size_t item) {
+        samplers[lane] = photonSampler(first + item, iteration, seed);
+        return sppmStartPhoton(view, samplers[lane], paths[lane]) && sppmPhotonWantsRay(paths[lane], maxDepth);
+    }
+    CA_HD const Ray& ray(int lane) const { return paths[lane].ray; }
+    CA_HD bool hit(int lane, const Hit* hit, const Ray*&) {
+        ++rays;
+        return hit && sppmPhotonHit(view, samplers[lane], path, maxDepth, specularBelow, paths[lane], *hit, sink);
+    }
+    CA_HD void shadow(int, bool) {}
+    CA_HD void end(int) {}
+    CA_HD void move(int from, int to) {
+        paths[to] = paths[from];
+        samplers[to] = samplers[from];
+    }
+};
+
+/// Photon paths [first, first + count) side by side (lanes.h): each path takes its hits with the
+/// one-path loop's step function (sppmPhotonHit) and its own stream, so it makes the photons it
+/// makes traced alone; only the order of the sink's calls differs. With packets of one ray it is
+/// photonPath for each. Rays are counted in block first / 1024.
 template <class Intersector, class Sink>
 CA_HD void photonPathGroup(const SceneView& view, const Intersector& accel, size_t first, size_t count,
                            uint64_t iteration, uint64_t seed, const PathSettings& path, uint32_t maxDepth,
                            Float specularBelow, uint64_t* rayBlocks, Sink&& sink) {
-    constexpr int L = rayPacketSize<Intersector>();
-    const size_t end = first + count;
+    constexpr int L = laneCount<Intersector>();
     if constexpr (L == 1) {
-        for (size_t i = first; i < end; ++i)
+        for (size_t i = first; i < first + count; ++i)
             photonPath(view, accel, i, iteration, seed, path, maxDepth, specularBelow, rayBlocks, sink);
     } else {
-        SppmPhotonPath paths[L];
-        IndependentSampler samplers[L];
-        Hit hits[L];
-        uint32_t found[L];
-        const Ray* rays[L];
-        Hit* hitOut[L];
-        size_t next = first;
-        // Starts the next path of the range that traces a ray in lane `slot`; false: none left.
-        const auto start = [&](int slot) {
-            while (next < end) {
-                samplers[slot] = photonSampler(next++, iteration, seed);
-                if (sppmStartPhoton(view, samplers[slot], paths[slot]) && sppmPhotonWantsRay(paths[slot], maxDepth))
-                    return true;
-            }
-            return false;
-        };
-        int live = 0;  // lanes [0, live) hold paths
-        while (live < L && start(live)) ++live;
-        uint32_t traced = 0;
-        while (live > 0) {
-            for (int j = 0; j < live; ++j) {
-                rays[j] = &paths[j].ray;
-                hitOut[j] = &hits[j];
-            }
-            intersectPacket(accel, live, rays, hitOut, found);
-            traced += uint32_t(live);
-            for (int j = 0; j < live; ++j) prefetchTriangle(view, hits[j]);
-            for (int j = 0; j < live; ++j) prefetchVertices(view, hits[j]);
-            for (int j = 0; j < live;) {
-                if ((found[j] && sppmPhotonHit(view, samplers[j], path, maxDepth, specularBelow, paths[j], hits[j],
-                                               sink)) ||
-                    start(j)) {
-                    ++j;
-                    continue;
-                }
-                // Lane j is free and the range spent: the last lane (not yet shaded) moves here.
-                if (j < --live) {
-                    paths[j] = paths[live];
-                    samplers[j] = samplers[live];
-                    hits[j] = hits[live];
-                    found[j] = found[live];
-                }
-            }
-        }
-        sppmAtomicAdd(rayBlocks + first / 1024, traced);
+        PhotonLanes<L, std::remove_reference_t<Sink>> lanes{view, path, maxDepth, specularBelow, iteration, seed,
+                                                            first, sink};
+        traceLanes(view, accel, count, lanes);
+        sppmAtomicAdd(rayBlocks + first / 1024, lanes.rays);
     }
 }
 

@@ -114,6 +114,29 @@ struct EyeLanes {
     }
 };
 
+/// Eye pass entries [first, first + count) (a work item of eyePass): side by side where the
+/// intersector answers packets, else one after the other with sppmEyePath.
+template <class Intersector>
+CA_HD void eyeEntries(const SceneView& view, const Intersector& accel, const PathSettings& path, Float specularBelow,
+                      const EmitterBoxes& emitters, uint64_t seed, int width, const EyeOutputs& out, size_t first,
+                      size_t count) {
+    constexpr int L = laneCount<Intersector>();
+    if constexpr (L == 1) {
+        for (size_t s = first; s < first + count; ++s) {
+            CameraSample c = eyeCameraSample(view.camera, out.sampling, width, seed, s);
+            SppmVisiblePoint vp;
+            bool has = false;
+            uint32_t rays = 0;
+            const Spectrum radiance = sppmEyePath(view, accel, c.sampler, c.ray, path, uint32_t(kSppmDepthCap),
+                                                  specularBelow, emitters, vp, has, rays);
+            out.write(s, radiance, vp, has, rays);
+        }
+    } else {
+        EyeLanes<L> lanes{view, path, specularBelow, emitters, seed, width, first, out};
+        traceLanes(view, accel, count, lanes);
+    }
+}
+
 /// The eye pass: entry s's eye path (sppmEyePath), its Ld, visible point, flag and rays. With
 /// Embree on the host a work item takes 64 entries, 16 in flight (lanes.h), each path bit for bit
 /// its sppmEyePath.
@@ -126,21 +149,8 @@ void eyePass(Exec exec, const SceneView& view, const Intersector& accel, PathSet
     launch(
         exec, "sppm.eye", (entries + G - 1) / G,
         [=] CA_HD(size_t g) {
-            constexpr int L = laneCount<Intersector>();
-            if constexpr (L == 1) {
-                const size_t s = g;
-                CameraSample c = eyeCameraSample(view.camera, out.sampling, width, seed, s);
-                SppmVisiblePoint vp;
-                bool has = false;
-                uint32_t count = 0;
-                const Spectrum radiance = sppmEyePath(view, accel, c.sampler, c.ray, path, uint32_t(kSppmDepthCap),
-                                                      specularBelow, emitters, vp, has, count);
-                out.write(s, radiance, vp, has, count);
-            } else {
-                const size_t first = g * G;
-                EyeLanes<L> lanes{view, path, specularBelow, emitters, seed, width, first, out};
-                traceLanes(view, accel, min(G, entries - first), lanes);
-            }
+            const size_t first = g * G;
+            eyeEntries(view, accel, path, specularBelow, emitters, seed, width, out, first, min(G, entries - first));
         },
         G > 1 ? 1 : 16);
 }

@@ -37,6 +37,9 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
     cmd.add_option("-D,--define", o.defines, "Set a scene <default> parameter: -D name=value (repeatable)");
     cmd.add_option("--accel", o.accel, "Ray-tracing backend on the CPU (a GPU traces the own BVH)")
         ->check(CLI::IsMember({"embree", "bvh"}));
+    cmd.add_option("--embree-isa", o.embreeIsa, "Instruction set of Embree's kernels: auto (default: the widest on "
+                   "CPUs with AVX-512 whose clock it does not lower, else sse4.2), widest or sse4.2")
+        ->check(CLI::IsMember({"auto", "widest", "sse4.2"}));
     std::vector<std::string> names;
     for (const IntegratorEntry& e : integratorRegistry()) names.push_back(e.name);
     cmd.add_option("--integrator", r.integrator, "Integrator (overrides the scene's): " + integratorNames())
@@ -113,6 +116,7 @@ void resolveRenderOptions(RenderOptions& o, const CLI::App& cmd) {
     if (o.control.resume && o.control.overwrite) throw Error("--resume and --overwrite exclude each other");
     o.request.defines = parseDefines(o.defines);
     o.request.accel = parseAccelKind(o.accel);
+    o.request.embreeIsa = parseEmbreeIsa(o.embreeIsa);
     if (!o.res.empty()) {
         int w = 0, h = 0;
         char x = 0, extra = 0;

@@ -20,6 +20,7 @@ struct RenderOptions {
     std::vector<std::string> defines;
     std::string res;  // WIDTHxHEIGHT
     std::string accel = "embree";
+    std::string embreeIsa = "auto";
     int threads = 0;
     uint64_t seed = 0;  // request.seed when --seed is given
     /// The integrators' options (integrator_registry.h), by flag: parameter name and value.

@@ -146,6 +146,7 @@ public:
                     "samples"_a = s.samples, "rays"_a = s.rays, "invalid_samples"_a = s.invalidSamples,
                     "integrator"_a = renderer_->integrator(), "seed"_a = renderer_->seed(),
                     "device"_a = deviceName(renderer_->device().kind), "accel"_a = renderer_->accelName(),
+                    "accel_description"_a = renderer_->accelDescription(),
                     "accel_build_seconds"_a = renderer_->accelBuildSeconds());
         // The integrator's own figures, as the statistics JSON has them (values are JSON text).
         const pyb::object loads = pyb::module_::import("json").attr("loads");

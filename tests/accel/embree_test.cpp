@@ -112,8 +112,10 @@ struct Mismatches {
 /// Embree must agree with brute force (hit or miss, occlusion, t within 1e-4 relative, primId,
 /// barycentrics within 1e-3) on every ray whose answer is not ambiguous at float precision.
 Mismatches compareWithBruteForce(const Scene& scene, uint32_t numRays, uint64_t seed,
-                                 double maxAmbiguousFraction = 0.05) {
-    const EmbreeScene embree(scene);
+                                 double maxAmbiguousFraction = 0.05, EmbreeIsa isa = EmbreeIsa::Auto) {
+    EmbreeSceneOptions options;
+    options.isa = isa;
+    const EmbreeScene embree(scene, options);
     const EmbreeIntersector it = embree.intersector();
     const SceneView view = scene.view();
     Mismatches m;
@@ -158,6 +160,24 @@ TEST(Embree, MatchesBruteForceOnRandomScenes) {
         const Mismatches m = compareWithBruteForce(scene, 2500, 5);
         EXPECT_GT(m.hits, 250u);
         EXPECT_LE(m.ambiguous, 25u);  // 1% of the rays
+    }
+}
+
+// Each instruction-set cap runs other kernels (16-, 8- or 4-wide); each must answer correctly, and
+// SSE4.2's packets are 4 wide.
+TEST(Embree, EveryInstructionSetCapMatchesBruteForce) {
+    const Scene scene = test::makeRandomScene(sceneOf(1500, 200, 41));
+    for (EmbreeIsa isa : {EmbreeIsa::Widest, EmbreeIsa::Sse42}) {
+        SCOPED_TRACE(embreeIsaName(isa));
+        const Mismatches m = compareWithBruteForce(scene, 2500, 9, 0.05, isa);
+        EXPECT_GT(m.hits, 250u);
+        EXPECT_LE(m.ambiguous, 25u);  // 1% of the rays
+        EmbreeSceneOptions options;
+        options.isa = isa;
+        const EmbreeScene embree(scene, options);
+        EXPECT_EQ(embree.isa(), isa);
+        if (isa == EmbreeIsa::Sse42) EXPECT_EQ(embree.packetWidth(), 4);
+        EXPECT_GE(embree.packetWidth(), 4);  // every x86-64 CPU Embree runs on has SSE4.2's 4-wide
     }
 }
 

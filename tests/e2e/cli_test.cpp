@@ -82,6 +82,28 @@ TEST_F(Cli, RendersAllFormatsWithStatistics) {
     EXPECT_NE(r.output.find("rays/s"), std::string::npos);
 }
 
+// --embree-isa caps Embree's instruction set; the statistics say which cap and packet width ran
+// (the default, auto, resolves to widest or sse4.2 by the CPU: embree_isa.h).
+TEST_F(Cli, EmbreeInstructionSetIsChosenAndReported) {
+    auto statsOf = [&](const std::string& extra) {
+        Result r = run("render " + box + " -D width=8 -D height=8 --spp 1 -q -o " + path("e.pfm") + " --stats-json " +
+                       path("e.json") + extra);
+        EXPECT_EQ(r.exitCode, 0) << r.output;
+        std::ifstream js(path("e.json"));
+        return std::string((std::istreambuf_iterator<char>(js)), {});
+    };
+    EXPECT_NE(statsOf(" --embree-isa sse4.2").find("\"accel_description\": \"embree (sse4.2, 4-ray packets)\""),
+              std::string::npos);
+    const std::string automatic = statsOf("");
+    EXPECT_TRUE(automatic.find("\"embree (widest, ") != std::string::npos ||
+                automatic.find("\"embree (sse4.2, 4-ray packets)\"") != std::string::npos)
+        << automatic;
+    EXPECT_NE(statsOf(" --accel bvh").find("\"accel_description\": \"bvh\""), std::string::npos);
+    Result bad = run("render " + box + " --embree-isa avx2 -q -o " + path("e.pfm"));
+    EXPECT_NE(bad.exitCode, 0);
+    EXPECT_NE(bad.output.find("--embree-isa"), std::string::npos) << bad.output;
+}
+
 TEST_F(Cli, TimeBudgetStopsTheRender) {
     Result r = run("render " + box + " -D width=16 -D height=16 --time 0.5 -q -o " + path("t.exr"));
     ASSERT_EQ(r.exitCode, 0) << r.output;

@@ -270,7 +270,8 @@ EmbreeScene::EmbreeScene(const Scene& scene, const EmbreeSceneOptions& options)
     : numTriangles_(uint32_t(scene.triangles.size())),
       firstCylinder_(uint32_t(scene.triangles.size() + scene.spheres.size())) {
     const auto start = std::chrono::steady_clock::now();
-    device_ = rtcNewDevice(nullptr);
+    isa_ = resolveEmbreeIsa(options.isa, hostCpuModel());
+    device_ = rtcNewDevice(embreeDeviceConfig(isa_).c_str());
     if (!device_)
         throw Error(std::string("Embree: cannot create device: ") +
                     errorName(rtcGetDeviceError(nullptr)));

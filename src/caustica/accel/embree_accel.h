@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "caustica/accel/embree_isa.h"
 #include "caustica/scene/ray.h"
 #include "caustica/scene/scene.h"
 
@@ -43,6 +44,10 @@ struct EmbreeSceneOptions {
     /// along shared edges; without it, Moeller-Trumbore lets rays through shared edges and
     /// vertices (tests/accel/watertight_test.cpp). Only tests turn it off.
     bool robust = true;
+    /// The widest instruction set Embree may use (embree_isa.h: auto leaves it free on CPUs with
+    /// AVX-512 whose clock it does not lower, else caps it at SSE4.2). The cap also bounds the
+    /// packet width (16 needs AVX-512, 8 AVX, 4 SSE).
+    EmbreeIsa isa = EmbreeIsa::Auto;
 };
 
 /// Whether Embree may read `positions` in place (rtcSetSharedGeometryBuffer): its 16-byte vertex
@@ -72,8 +77,10 @@ public:
     /// Rays per Embree packet call: the widest packet Embree runs natively on this CPU (16, 8 or
     /// 4), else 1 (single rays). Narrower ones work too (set EmbreeIntersector::packetWidth).
     int packetWidth() const { return packetWidth_; }
-    /// The widest packet (16, 8, 4 or 1) Embree runs natively on this CPU.
+    /// The widest packet (16, 8, 4 or 1) Embree runs natively on this CPU under the cap.
     int nativePacketWidth() const { return nativePacketWidth_; }
+    /// The instruction-set cap Embree was created with (options.isa resolved, never Auto).
+    EmbreeIsa isa() const { return isa_; }
     double buildMilliseconds() const { return buildMilliseconds_; }
     /// Whether Embree reads the Scene's positions in place (else its own padded copy).
     bool sharesVertices() const { return sharesVertices_; }
@@ -91,6 +98,7 @@ private:
     uint32_t firstCylinder_ = 0;
     int packetWidth_ = 1;
     int nativePacketWidth_ = 1;
+    EmbreeIsa isa_ = EmbreeIsa::Widest;
     bool sharesVertices_ = false;
     double buildMilliseconds_ = 0;
     std::string lastMessage_;  // filled by the device's error callback

@@ -158,6 +158,7 @@ void writeRenderStatsJson(const std::string& path, const Renderer& r, bool cance
           << "  \"integrator\": \"" << r.integrator() << "\",\n"
           << "  \"device\": \"" << deviceName(r.device().kind) << "\",\n"
           << "  \"accel\": \"" << r.accelName() << "\",\n"
+          << "  \"accel_description\": " << jsonString(r.accelDescription()) << ",\n"
           << "  \"seed\": " << r.seed() << ",\n"
           << "  \"seconds\": " << s.seconds << ",\n"
           << "  \"run_seconds\": " << run << ",\n"

@@ -113,7 +113,9 @@ Renderer::Renderer(Scene scene, const RenderRequest& request, const CheckpointHe
         warnings_.push_back(s.sourceFile + ": the scene has no emitter: the image will be black");
     identity_ = sceneIdentity(s, request, seed_, comm.size());
     const auto buildStart = Clock::now();
-    accel_ = std::make_unique<Accel>(s, accelKind);
+    EmbreeSceneOptions embreeOptions;
+    embreeOptions.isa = request.embreeIsa;
+    accel_ = std::make_unique<Accel>(s, accelKind, BvhBuildOptions{}, embreeOptions);
     accelSeconds_ = secondsSince(buildStart);
     const SessionContext context{s, *accel_, device_, seed_, request, params,
                                  resumeFrom ? &resumeFrom->identity : nullptr, comm};
@@ -154,7 +156,7 @@ std::string Renderer::description() const {
     char line[512];
     std::snprintf(line, sizeof line, "%s: %zu triangles, %zu spheres, %zu lights; %dx%d; %s built in %s\n",
                   s.sourceFile.c_str(), s.triangles.size(), s.spheres.size(), s.lights.size(), s.film.width,
-                  s.film.height, accelName(), ProgressReporter::formatDuration(accelSeconds_).c_str());
+                  s.film.height, accel_->description().c_str(), ProgressReporter::formatDuration(accelSeconds_).c_str());
     return line + session_->description() + "\n";
 }
 

@@ -77,6 +77,8 @@ public:
     const Device& device() const { return device_; }
     Communicator& comm() const { return *comm_; }
     const char* accelName() const;
+    /// The backend and, for Embree, its instruction-set cap and packet width (Accel::description).
+    std::string accelDescription() const { return accel_->description(); }
     double accelBuildSeconds() const { return accelSeconds_; }
     /// Lines describing the render for its start ("scene: N triangles ...", "device: ...").
     std::string description() const;

@@ -8,10 +8,13 @@
 // Scenes: a procedural displaced icosphere (327,680 triangles) on a ground quad, and
 // scenes/cornell-water/scene.xml and scenes/cornell-box/scene.xml when they load (each skipped
 // with the reason printed otherwise).
-// Backends: the own BVH's three traversals; Embree as caustica builds it (RTC_SCENE_FLAG_ROBUST);
-// and, for reference only, Embree without that flag (`embree-not-robust`, what Mitsuba 3 builds:
-// faster, but it lets rays through shared mesh edges, tests/accel/watertight_test.cpp), so that
-// the price of watertightness is measured beside the rest.
+// Backends: the own BVH's three traversals; Embree as caustica builds it (RTC_SCENE_FLAG_ROBUST,
+// the instruction set `auto` picks for this CPU, embree_isa.h); Embree with its widest kernels
+// (`embree-widest`, the same where auto picks them; on a CPU where auto caps Embree at SSE4.2 it
+// shows what the cap costs or saves rays alone); and, for reference only, Embree without the
+// robust flag (`embree-not-robust`, what Mitsuba 3 builds: faster, but it lets rays through shared
+// mesh edges, tests/accel/watertight_test.cpp), so that the price of watertightness is measured
+// beside the rest.
 //
 //   bench_rays [--threads=1,2] [--benchmark_filter=...] [--benchmark_repetitions=N]
 // ends with a table: scene, ray type, threads, Mrays/s of each BVH traversal and of both Embree
@@ -53,6 +56,7 @@ struct BenchScene {
     Scene scene;
     Bvh bvh;
     std::unique_ptr<EmbreeScene> embree;          // as caustica renders: robust
+    std::unique_ptr<EmbreeScene> embreeWidest;     // robust, Embree's widest kernels
     std::unique_ptr<EmbreeScene> embreeNotRobust;  // reference only: leaks at shared edges
     std::vector<Ray> camera, bounce, shadow;
 };
@@ -141,6 +145,9 @@ void registerScene(const BenchScene& b) {
         registerRays(prefix + "embree", [&b, rays, anyHit](benchmark::State& st) {
             traceRays(st, b.embree->intersector(), *rays, anyHit);
         });
+        registerRays(prefix + "embree-widest", [&b, rays, anyHit](benchmark::State& st) {
+            traceRays(st, b.embreeWidest->intersector(), *rays, anyHit);
+        });
         registerRays(prefix + "embree-not-robust", [&b, rays, anyHit](benchmark::State& st) {
             traceRays(st, b.embreeNotRobust->intersector(), *rays, anyHit);
         });
@@ -187,6 +194,9 @@ void addScene(std::string name, Scene scene) {
     const size_t rssBefore = residentBytes();
     b->embree = std::make_unique<EmbreeScene>(b->scene);
     const size_t embreeBytes = residentBytes() - rssBefore;
+    EmbreeSceneOptions widest;
+    widest.isa = EmbreeIsa::Widest;
+    b->embreeWidest = std::make_unique<EmbreeScene>(b->scene, widest);
     EmbreeSceneOptions notRobust;
     notRobust.robust = false;
     b->embreeNotRobust = std::make_unique<EmbreeScene>(b->scene, notRobust);
@@ -268,10 +278,11 @@ int main(int argc, char** argv) {
     TableReporter reporter;
     benchmark::RunSpecifiedBenchmarks(&reporter);
 
-    std::printf("\n%-16s %-8s %7s %9s %9s %9s %9s %9s %7s %7s %7s %7s\n", "scene", "rays", "threads",
-                "stack", "short", "stackless", "Embree", "Embree", "short/", "sless/", "stack/", "NR/");
-    std::printf("%-16s %-8s %7s %9s %9s %9s %9s %9s %7s %7s %7s %7s\n", "", "", "", "Mrays/s", "Mrays/s",
-                "Mrays/s", "Mrays/s", "NR Mr/s", "stack", "stack", "Embree", "Embree");
+    std::printf("\n%-16s %-8s %7s %9s %9s %9s %9s %9s %9s %7s %7s %7s %7s %7s\n", "scene", "rays", "threads",
+                "stack", "short", "stackless", "Embree", "Embree", "Embree", "short/", "sless/", "stack/",
+                "stack/", "NR/");
+    std::printf("%-16s %-8s %7s %9s %9s %9s %9s %9s %9s %7s %7s %7s %7s %7s\n", "", "", "", "Mrays/s", "Mrays/s",
+                "Mrays/s", "Mrays/s", "W Mr/s", "NR Mr/s", "stack", "stack", "Embree", "EmbW", "Embree");
     auto fixed2 = [](double v) {
         char buf[32];
         std::snprintf(buf, sizeof buf, "%.2f", v);
@@ -290,13 +301,15 @@ int main(int argc, char** argv) {
                              shortStack = reporter.rate(prefix + "bvh-short", threads),
                              stackless = reporter.rate(prefix + "bvh-stackless", threads),
                              emb = reporter.rate(prefix + "embree", threads),
+                             embWidest = reporter.rate(prefix + "embree-widest", threads),
                              embNotRobust = reporter.rate(prefix + "embree-not-robust", threads);
-                if (stack < 0 && shortStack < 0 && stackless < 0 && emb < 0 && embNotRobust < 0) continue;
-                std::printf("%-16s %-8s %7d %9s %9s %9s %9s %9s %7s %7s %7s %7s\n", b->name.c_str(), type,
-                            threads, rate(stack).c_str(), rate(shortStack).c_str(),
-                            rate(stackless).c_str(), rate(emb).c_str(), rate(embNotRobust).c_str(),
+                if (stack < 0 && shortStack < 0 && stackless < 0 && emb < 0 && embWidest < 0 && embNotRobust < 0)
+                    continue;
+                std::printf("%-16s %-8s %7d %9s %9s %9s %9s %9s %9s %7s %7s %7s %7s %7s\n", b->name.c_str(), type,
+                            threads, rate(stack).c_str(), rate(shortStack).c_str(), rate(stackless).c_str(),
+                            rate(emb).c_str(), rate(embWidest).c_str(), rate(embNotRobust).c_str(),
                             ratio(shortStack, stack).c_str(), ratio(stackless, stack).c_str(),
-                            ratio(stack, emb).c_str(), ratio(embNotRobust, emb).c_str());
+                            ratio(stack, emb).c_str(), ratio(stack, embWidest).c_str(), ratio(embNotRobust, emb).c_str());
             }
     benchmark::Shutdown();
     return 0;

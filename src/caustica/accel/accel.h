@@ -45,8 +45,6 @@ public:
     AccelKind kind() const { return kind_; }
     /// The own BVH (its statistics for `caustica info`), or nullptr for the Embree backend.
     const Bvh* bvh() const { return bvh_.get(); }
-    /// The Embree backend (its instruction set and packet width), or nullptr for the own BVH.
-    const EmbreeScene* embree() const { return embree_.get(); }
     /// "bvh", or "embree (sse4.2, 4-ray packets)" / "embree (widest, 16-ray packets)": the backend
     /// and, for Embree, its instruction-set cap and the packets it traces.
     std::string description() const;

@@ -8,8 +8,8 @@
 //     rays, and their images are equal only when both answer alike.
 //   - On Intel's Skylake-SP / Cascade Lake / Cooper Lake server cores (family 6, model 0x55),
 //     256- and 512-bit code lowers the core's clock, which slows everything the core runs
-//     meanwhile, caustica's own shading included: there Embree's SSE4.2 kernels render 1.10-1.16x
-//     faster than its AVX-512 ones (and at least as fast as its AVX2 ones).
+//     meanwhile, caustica's own shading included: there Embree's SSE4.2 kernels render 1.03-1.16x
+//     faster than its AVX-512 ones (medians of paired runs) and at least as fast as its AVX2 ones.
 // So `auto` lets Embree take its widest kernels on CPUs with AVX-512 whose clock it does not lower
 // (Ice Lake server onwards, AMD Zen 4: 16-ray packets, measured fastest there) and caps it at
 // SSE4.2 everywhere else.

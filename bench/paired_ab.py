@@ -12,6 +12,9 @@ Example (Embree's instruction sets, docs/PERFORMANCE.md 2026-11-28):
   bench/paired_ab.py --caustica build/caustica --scenes cornell-water,cornell-box --pairs 8 \\
       --common '--res 128x128 --spp 32 -D max_depth=16 --threads 2' \\
       --a '--embree-isa sse4.2' --b '--embree-isa widest' --csv out/isa.csv
+
+Two builds against each other (a change measured before it lands): --caustica is A's binary,
+--caustica-b B's; --a and --b may then be empty.
 """
 import argparse
 import json
@@ -47,6 +50,7 @@ def run_seconds(caustica, scene, args, tmp):
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument('--caustica', default=os.path.join(ROOT, 'build', 'caustica'))
+    p.add_argument('--caustica-b', help='binary of setting B (default: --caustica), to time a build against another')
     p.add_argument('--scenes', default='cornell-water', help='comma separated names in scenes/ or XML paths')
     p.add_argument('--pairs', type=int, default=8)
     p.add_argument('--common', default='', help='arguments of every run')
@@ -62,16 +66,18 @@ def main():
             scene = scene_path(name)
             a_args = shlex.split(o.common) + shlex.split(o.a)
             b_args = shlex.split(o.common) + shlex.split(o.b)
+            bin_a, bin_b = o.caustica, o.caustica_b or o.caustica
             ta, tb = [], []
             for i in range(o.pairs):
                 if i % 2 == 0:
-                    ta.append(run_seconds(o.caustica, scene, a_args, tmp))
-                    tb.append(run_seconds(o.caustica, scene, b_args, tmp))
+                    ta.append(run_seconds(bin_a, scene, a_args, tmp))
+                    tb.append(run_seconds(bin_b, scene, b_args, tmp))
                 else:
-                    tb.append(run_seconds(o.caustica, scene, b_args, tmp))
-                    ta.append(run_seconds(o.caustica, scene, a_args, tmp))
+                    tb.append(run_seconds(bin_b, scene, b_args, tmp))
+                    ta.append(run_seconds(bin_a, scene, a_args, tmp))
             ratios = [y / x for x, y in zip(ta, tb)]
-            row = {'scene': name, 'common': o.common, 'a': o.a, 'b': o.b, 'pairs': o.pairs,
+            row = {'scene': name, 'common': o.common, 'a': o.a, 'b': o.b, 'binary_a': bin_a, 'binary_b': bin_b,
+                   'pairs': o.pairs,
                    'median_a_s': round(statistics.median(ta), 4), 'median_b_s': round(statistics.median(tb), 4),
                    'median_b_over_a': round(statistics.median(ratios), 4), 'min_b_over_a': round(min(ratios), 4),
                    'max_b_over_a': round(max(ratios), 4)}

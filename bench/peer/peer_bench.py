@@ -8,15 +8,19 @@ max_depth (Mitsuba's meaning) and thread count, in one run. Reported: seconds of
 caustica's samples/s over each renderer's, and every image's mean pixel value as a sanity check
 (the same estimator gives close means; a warning is printed when they differ by more than 5%).
 
-Timing. caustica: `run_seconds` of its statistics (the rendering itself; parsing the scene and
-building the acceleration structure are not in it), best of --repeat processes. Mitsuba: the
-scene is loaded once per variant (which builds its acceleration structure), rendered once to warm
-up (the full render for llvm_ad_rgb, whose first render compiles the kernel; 1 spp for
-scalar_rgb), then `mi.render(scene, spp=...)` plus the conversion of the image to numpy is timed
---repeat times and the best is kept. Each Mitsuba variant runs in its own Python process (a
-crash or a failing LLVM set-up only skips that variant, with its reason). Threads: caustica
---threads N; Mitsuba dr.set_thread_count(N) (the nanothread pool both the scalar and the llvm
-variants render with).
+Timing, interleaved. Each Mitsuba variant runs in its own Python process that loads the scene once
+(which builds its acceleration structure), renders it once to warm up (the full render for
+llvm_ad_rgb, whose first render compiles the kernel; 1 spp for scalar_rgb) and then renders on
+request. The script times --repeat rounds; in a round every renderer renders once, back to back,
+the order rotating from round to round: caustica as one `caustica render` process, timed by the
+`run_seconds` of its statistics (the rendering itself; parsing the scene and building the
+acceleration structure are not in it), Mitsuba as `mi.render(scene, spp=...)` plus the conversion
+of the image to numpy. On a shared VM whole renders drift by 10-50% within minutes, which moves
+the renderers of one round alike: the ratio of caustica's samples/s to a peer's is therefore the
+median over the rounds of the ratio within each round (its smallest and largest value reported
+beside it), and `seconds` is each renderer's best round. A crash or a failing LLVM set-up only
+skips that variant, with its reason. Threads: caustica --threads N; Mitsuba dr.set_thread_count(N)
+(the nanothread pool both the scalar and the llvm variants render with).
 
 Scenes: names of scenes/NAME/scene.xml, paths of Mitsuba 3 XML files, or `icosphere-330k`, a
 generated scene (an icosahedron subdivided 7 times, 327,680 triangles, displaced by fractal noise,
@@ -37,6 +41,8 @@ import argparse
 import datetime
 import json
 import os
+import select
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -50,8 +56,8 @@ sys.path.insert(0, os.path.join(ROOT, 'bench'))
 LLVM_DEFAULT = '/usr/lib/x86_64-linux-gnu/libLLVM.so.19.1'
 DEFAULT_SCENES = 'cornell-water,glass-caustic,cornell-box,icosphere-330k'
 NEEDED_DEFAULTS = ('spp', 'width', 'height', 'max_depth')
-COLUMNS = ['scene', 'triangles', 'res', 'spp', 'max_depth', 'threads', 'renderer', 'seconds', 'samples_per_s',
-           'rays_per_s', 'ratio_caustica_over_this', 'image_mean', 'note']
+COLUMNS = ['scene', 'triangles', 'res', 'spp', 'max_depth', 'threads', 'renderer', 'rounds', 'seconds',
+           'samples_per_s', 'rays_per_s', 'ratio_caustica_over_this', 'ratio_min', 'ratio_max', 'image_mean', 'note']
 
 
 # ---- the generated scene ------------------------------------------------------------------------
@@ -340,7 +346,7 @@ def pfm_mean(path):
 # ---- caustica -----------------------------------------------------------------------------------
 
 def run_caustica(a, xml, defines, params, extra):
-    best = None
+    """One `caustica render` process: its seconds, samples/s, rays/s and image mean, or a note."""
     with tempfile.TemporaryDirectory() as tmp:
         img, stats = os.path.join(tmp, 'img.pfm'), os.path.join(tmp, 'stats.json')
         cmd = [a.caustica, 'render', xml, '-q', '-o', img, '--stats-json', stats, '--checkpoint-every', '0',
@@ -349,21 +355,18 @@ def run_caustica(a, xml, defines, params, extra):
         for k, v in defines.items():
             cmd += ['-D', '%s=%s' % (k, v)]
         cmd += extra
-        for _ in range(a.repeat):
-            p = subprocess.run(cmd, capture_output=True, text=True)
-            if p.returncode != 0:
-                return {'note': 'caustica failed (%d): %s' % (p.returncode, (p.stderr.strip() or p.stdout.strip())[-300:])}
-            with open(stats) as f:
-                st = json.load(f)
-            sec = float(st['run_seconds'])
-            if best is None or sec < best['seconds']:
-                best = {'seconds': sec, 'samples_per_s': float(st['samples']) / sec,
-                        'rays_per_s': float(st['rays']) / sec, 'samples': int(st['samples'])}
-            best['image_mean'] = pfm_mean(img)  # same seed every repeat: the same image
+        p = subprocess.run(cmd, capture_output=True, text=True)
+        if p.returncode != 0:
+            return {'note': 'caustica failed (%d): %s' % (p.returncode, (p.stderr.strip() or p.stdout.strip())[-300:])}
+        with open(stats) as f:
+            st = json.load(f)
+        sec = float(st['run_seconds'])
+        r = {'seconds': sec, 'samples_per_s': float(st['samples']) / sec, 'rays_per_s': float(st['rays']) / sec,
+             'image_mean': pfm_mean(img)}
         expect = params['width'] * params['height'] * params['spp']
-        if best['samples'] != expect:
-            best['note'] = 'caustica rendered %d samples, expected %d' % (best['samples'], expect)
-    return best
+        if int(st['samples']) != expect:
+            r['note'] = 'caustica rendered %d samples, expected %d' % (int(st['samples']), expect)
+        return r
 
 
 # ---- Mitsuba (in a child process per variant) ---------------------------------------------------
@@ -402,41 +405,80 @@ def mitsuba_worker(spec):
 
     warm_spp = spp if job['variant'].startswith(('llvm', 'cuda')) else 1
     info['warmup_seconds'], _ = render_once(warm_spp)
-    best, arr = None, None
-    for _ in range(job['repeat']):
-        sec, arr = render_once(spp)
-        best = sec if best is None else min(best, sec)
-    info['seconds'] = best
     info['samples'] = size[0] * size[1] * spp
-    info['image_mean'] = float(arr[..., :3].astype(np.float64).mean())
-    info['image_shape'] = list(arr.shape)
-    print('RESULT ' + json.dumps(info), flush=True)
+    print('READY ' + json.dumps(info), flush=True)
+    for line in sys.stdin:  # one timed render per request line, until stdin closes
+        sec, arr = render_once(spp)
+        print('RESULT ' + json.dumps({'seconds': sec, 'image_mean': float(arr[..., :3].astype(np.float64).mean()),
+                                      'image_shape': list(arr.shape)}), flush=True)
 
 
-def run_mitsuba(a, variant, xml, defines, params):
-    job = {'variant': variant, 'xml': os.path.abspath(xml), 'defines': defines, 'spp': params['spp'],
-           'threads': a.threads, 'repeat': a.repeat}
-    try:
-        p = subprocess.run([a.python, os.path.abspath(__file__), '--mitsuba-worker', json.dumps(job)],
-                           capture_output=True, text=True, timeout=a.timeout)
-    except subprocess.TimeoutExpired:
-        return {'note': 'skipped: no result within --timeout %d s' % a.timeout}
-    for line in p.stdout.splitlines():
-        if line.startswith('RESULT '):
-            r = json.loads(line[7:])
-            r['samples_per_s'] = r['samples'] / r['seconds']
-            notes = []
-            if r['size'] != [params['width'], params['height']]:
-                notes.append('Mitsuba film %dx%d' % tuple(r['size']))
-            if r.get('max_depth') is not None and r['max_depth'] != params['max_depth']:
-                notes.append('Mitsuba max_depth %d' % r['max_depth'])
-            if r.get('threads') != a.threads:
-                notes.append('drjit threads %s' % r.get('threads'))
-            r['note'] = '; '.join(notes)
-            return r
-    err = (p.stderr.strip() or p.stdout.strip() or 'no output').splitlines()
-    reason = next((l for l in reversed(err) if 'Error' in l or 'error' in l or 'Exception' in l), err[-1])
-    return {'note': 'skipped: %s (exit %d)' % (reason.strip()[-300:], p.returncode)}
+class MitsubaSession:
+    """A worker process of one Mitsuba variant with its scene loaded and warmed up; render() times
+    one more render. `note` says why it is unusable (then `info` is None)."""
+
+    def __init__(self, a, variant, xml, defines, params):
+        self.a, self.params, self.info, self.note = a, params, None, ''
+        job = {'variant': variant, 'xml': os.path.abspath(xml), 'defines': defines, 'spp': params['spp'],
+               'threads': a.threads}
+        self.proc = subprocess.Popen([a.python, os.path.abspath(__file__), '--mitsuba-worker', json.dumps(job)],
+                                     stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                     text=True, bufsize=1)
+        line = self._reply('READY ')
+        if line is None:
+            return
+        self.info = json.loads(line)
+        notes = []
+        if self.info['size'] != [params['width'], params['height']]:
+            notes.append('Mitsuba film %dx%d' % tuple(self.info['size']))
+        if self.info.get('max_depth') is not None and self.info['max_depth'] != params['max_depth']:
+            notes.append('Mitsuba max_depth %d' % self.info['max_depth'])
+        if self.info.get('threads') != a.threads:
+            notes.append('drjit threads %s' % self.info.get('threads'))
+        self.note = '; '.join(notes)
+
+    def _reply(self, prefix):
+        """The payload of the worker's next line starting with `prefix`, or None (note set) when it
+        exits or stays silent for --timeout seconds."""
+        deadline = time.time() + self.a.timeout
+        while True:
+            ready, _, _ = select.select([self.proc.stdout], [], [], max(0.0, deadline - time.time()))
+            if not ready:
+                self.close()
+                self.note = 'skipped: no answer within --timeout %d s' % self.a.timeout
+                return None
+            line = self.proc.stdout.readline()
+            if not line:
+                err = (self.proc.stderr.read().strip() or 'no output').splitlines()
+                self.proc.wait()
+                reason = next((l for l in reversed(err) if 'Error' in l or 'error' in l or 'Exception' in l), err[-1])
+                self.note = 'skipped: %s (exit %d)' % (reason.strip()[-300:], self.proc.returncode)
+                self.info = None
+                return None
+            if line.startswith(prefix):
+                return line[len(prefix):]
+
+    def render(self):
+        """One timed render: {'seconds', 'samples_per_s', 'image_mean'}, or {'note'} on failure."""
+        if self.info is None:
+            return {'note': self.note}
+        self.proc.stdin.write('render\n')
+        self.proc.stdin.flush()
+        line = self._reply('RESULT ')
+        if line is None:
+            return {'note': self.note}
+        r = json.loads(line)
+        r['samples_per_s'] = self.info['samples'] / r['seconds']
+        return r
+
+    def close(self):
+        if self.proc.poll() is None:
+            self.proc.stdin.close()
+            try:
+                self.proc.wait(timeout=30)
+            except subprocess.TimeoutExpired:
+                self.proc.kill()
+                self.proc.wait()
 
 
 def mitsuba_version(python):
@@ -465,12 +507,14 @@ def main():
     ap.add_argument('--spp', type=int, default=64)
     ap.add_argument('--max-depth', type=int, default=16, help="longest path, Mitsuba's meaning (default 16)")
     ap.add_argument('--threads', type=int, default=2)
-    ap.add_argument('--repeat', type=int, default=2, help='timed renders per renderer; the best is kept')
+    ap.add_argument('--repeat', type=int, default=3,
+                    help='rounds; in each every renderer renders once, back to back (default %(default)s)')
     ap.add_argument('--variants', default='scalar_rgb,llvm_ad_rgb', help='Mitsuba variants, comma separated')
     ap.add_argument('--caustica', default=os.path.join(ROOT, 'build', 'caustica'))
     ap.add_argument('--python', default=sys.executable, help='Python with mitsuba (default: this one)')
     ap.add_argument('--cache', default=os.path.join(ROOT, 'out', 'peer'), help='generated scenes (default out/peer)')
-    ap.add_argument('--timeout', type=int, default=1800, help='seconds for one Mitsuba variant on one scene')
+    ap.add_argument('--timeout', type=int, default=1800,
+                    help='seconds a Mitsuba worker may take to load and warm up, or for one render')
     ap.add_argument('--csv', default=os.path.join(ROOT, 'out', 'peer', 'peer-%s.csv' % datetime.date.today().isoformat()))
     a, extra = ap.parse_known_args()
     try:
@@ -490,7 +534,7 @@ def main():
         variants = []
     else:
         print('Mitsuba %s (%s), DRJIT_LIBLLVM_PATH=%s' % (version, a.python, os.environ.get('DRJIT_LIBLLVM_PATH', '')))
-    print('%s, integrator path, %dx%d, %d spp, max_depth %d, %d threads, best of %d' % (
+    print('%s, integrator path, %dx%d, %d spp, max_depth %d, %d threads, %d interleaved rounds' % (
         a.caustica, w, h, a.spp, a.max_depth, a.threads, a.repeat), flush=True)
 
     rows = []
@@ -500,36 +544,53 @@ def main():
         tris = triangle_count(path)
         base = {'scene': name, 'triangles': '' if tris is None else tris, 'res': '%dx%d' % (w, h), 'spp': a.spp,
                 'max_depth': a.max_depth, 'threads': a.threads}
-        results = [('caustica', run_caustica(a, path, defines, params, extra))]
-        print('%-16s caustica            %s' % (name, summary(results[-1][1])), flush=True)
-        for v in variants:
-            results.append(('mitsuba-' + v, run_mitsuba(a, v, path, defines, params)))
-            print('%-16s %-19s %s' % (name, 'mitsuba-' + v, summary(results[-1][1])), flush=True)
-        cs = results[0][1].get('samples_per_s')
-        cm = results[0][1].get('image_mean')
-        for renderer, r in results:
-            row = dict(base, renderer=renderer)
-            sps = r.get('samples_per_s')
-            row.update({'seconds': r.get('seconds', ''), 'samples_per_s': sps if sps else '',
-                        'rays_per_s': r.get('rays_per_s', ''),
-                        'ratio_caustica_over_this': cs / sps if cs and sps else '',
-                        'image_mean': r.get('image_mean', ''), 'note': r.get('note', '')})
-            if renderer != 'caustica' and cm and r.get('image_mean'):
-                rel = cm / r['image_mean'] - 1
+        sessions = {}
+        for v in variants:  # loaded and warmed up before the timed rounds
+            sessions['mitsuba-' + v] = MitsubaSession(a, v, path, defines, params)
+        renderers = ['caustica'] + list(sessions)
+        rounds = {r: [] for r in renderers}  # per round: its result dict
+        for k in range(a.repeat):
+            order = renderers[k % len(renderers):] + renderers[:k % len(renderers)]
+            for renderer in order:
+                r = run_caustica(a, path, defines, params, extra) if renderer == 'caustica' \
+                    else sessions[renderer].render()
+                rounds[renderer].append(r)
+                print('%-16s round %d  %-19s %s' % (name, k + 1, renderer, summary(r)), flush=True)
+        for sess in sessions.values():
+            sess.close()
+        own = rounds['caustica']
+        for renderer in renderers:
+            done = [r for r in rounds[renderer] if r.get('samples_per_s')]
+            best = min(done, key=lambda r: r['seconds']) if done else {}
+            notes = [r.get('note') for r in rounds[renderer] if r.get('note')]
+            if renderer != 'caustica' and sessions[renderer].note and sessions[renderer].info is not None:
+                notes.insert(0, sessions[renderer].note)
+            ratios = [c['samples_per_s'] / r['samples_per_s'] for c, r in zip(own, rounds[renderer])
+                      if c.get('samples_per_s') and r.get('samples_per_s')]
+            row = dict(base, renderer=renderer, rounds=len(done), seconds=best.get('seconds', ''),
+                       samples_per_s=best.get('samples_per_s', ''), rays_per_s=best.get('rays_per_s', ''),
+                       ratio_caustica_over_this=statistics.median(ratios) if ratios else '',
+                       ratio_min=min(ratios) if ratios else '', ratio_max=max(ratios) if ratios else '',
+                       image_mean=best.get('image_mean', ''), note='; '.join(dict.fromkeys(notes)))
+            cm = own[-1].get('image_mean') if own else None
+            if renderer != 'caustica' and cm and best.get('image_mean'):
+                rel = cm / best['image_mean'] - 1
                 if abs(rel) > 0.05:
                     print('WARNING %s: caustica image mean %.5g differs from %s\'s %.5g by %+.1f%%' % (
-                        name, cm, renderer, r['image_mean'], 100 * rel), flush=True)
+                        name, cm, renderer, best['image_mean'], 100 * rel), flush=True)
                     row['note'] = '; '.join(x for x in (row['note'], 'mean differs %+.1f%%' % (100 * rel)) if x)
             rows.append(row)
 
     write_csv(a.csv, [{k: r[k] for k in COLUMNS} for r in rows])
     print()
-    print('%-16s %9s %-20s %9s %10s %9s %9s %10s  %s' % ('scene', 'triangles', 'renderer', 'seconds', 'Msamples/s',
-                                                         'Mrays/s', 'caus/this', 'mean', 'note'))
+    print('%-16s %9s %-20s %9s %10s %9s %9s %11s %10s  %s' % ('scene', 'triangles', 'renderer', 'seconds',
+                                                              'Msamples/s', 'Mrays/s', 'caus/this', '(min-max)',
+                                                              'mean', 'note'))
     for r in rows:
-        print('%-16s %9s %-20s %9s %10s %9s %9s %10s  %s' % (
+        spread = '' if r['ratio_min'] == '' else '%.2f-%.2f' % (r['ratio_min'], r['ratio_max'])
+        print('%-16s %9s %-20s %9s %10s %9s %9s %11s %10s  %s' % (
             r['scene'], r['triangles'], r['renderer'], fmt(r['seconds']), fmt(r['samples_per_s'], 1e6),
-            fmt(r['rays_per_s'], 1e6), fmt(r['ratio_caustica_over_this'], 1, '%.2f'),
+            fmt(r['rays_per_s'], 1e6), fmt(r['ratio_caustica_over_this'], 1, '%.2f'), spread,
             fmt(r['image_mean'], 1, '%.5f'), r['note']))
 
 

@@ -1,7 +1,8 @@
 // The public BSDF entry points (evalBsdf, pdfBsdf, evalPdfBsdf, sampleBsdf, isDeltaBsdf,
 // isSpecularBsdf; scene/bsdf.h) go straight to a plain leaf instead of walking the tree
 // (bsdf_composite.h). They must give the walk's values bit for bit, or images would change with
-// the shortcut; evalPdfBsdf must give what evalBsdf and pdfBsdf give, for composites too.
+// the shortcut; evalPdfBsdf must give what evalBsdf and pdfBsdf give, for composites too, and
+// BsdfAtVertex (one resolve for a vertex's two queries) what evalPdfBsdf and sampleBsdf give.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -87,6 +88,38 @@ TEST(BsdfLeafPath, GivesTheTreeWalksBits) {
             ASSERT_EQ(a, b) << i;
             if (a) {
                 ASSERT_TRUE(sameBits(direct, walked)) << i;
+            }
+        }
+    }
+}
+
+TEST(BsdfAtVertex, GivesEvalPdfBsdfsAndSampleBsdfsBits) {
+    std::vector<Bsdf> bsdfs;
+    const std::vector<Case> cases = buildCases(bsdfs);
+    const Span<const Bsdf> span(bsdfs.data(), bsdfs.size());
+    SurfaceInteraction si = test::surfaceAt(Vec3f(-0.4f, 0.8f, 0.2f));
+    si.dpdu = normalize(Vec3f(0.3f, 0.2f, 1));
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.name);
+        IndependentSampler rng(3, 0, 5);
+        for (int i = 0; i < 2000; ++i) {
+            const Vec3f wo = randomDirection(rng);
+            const BsdfAtVertex at(span, c.id, si, wo);
+            for (int q = 0; q < 2; ++q) {  // the prepared vertex answers any number of queries
+                const Vec3f wi = randomDirection(rng);
+                Float expectedPdf = -1, pdf = -2;
+                const Spectrum expected = evalPdfBsdf(span, c.id, si, wo, wi, expectedPdf);
+                ASSERT_TRUE(sameBits(expected, at.evalPdf(wi, pdf))) << i;
+                ASSERT_TRUE(sameBits(expectedPdf, pdf)) << i;
+
+                const Float uLobe = rng.get1D();
+                const Vec2f u = rng.get2D();
+                BsdfSample want, got;
+                const bool a = sampleBsdf(span, c.id, si, wo, uLobe, u, want);
+                ASSERT_EQ(a, at.sample(uLobe, u, got)) << i;
+                if (a) {
+                    ASSERT_TRUE(sameBits(want, got)) << i;
+                }
             }
         }
     }

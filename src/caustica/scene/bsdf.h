@@ -502,6 +502,65 @@ CA_HD_INLINE bool sampleBsdf(Span<const Bsdf> bsdfs, uint32_t id, const SurfaceI
     return true;
 }
 
+/// BSDF `id` at `si` seen from `wo`, prepared once for the two queries a path vertex makes:
+/// next-event estimation's evalPdf and the sample that continues the path. A plain leaf is
+/// resolved (resolve), textured and given wo in its local frame here, once instead of in each
+/// query; composites walk their tree per query as before. Each query returns evalPdfBsdf's /
+/// sampleBsdf's values bit for bit (the same operations on the same operands). Not copyable:
+/// the textured BSDF may live in its own scratch.
+class BsdfAtVertex {
+public:
+    CA_HD_INLINE BsdfAtVertex(Span<const Bsdf> bsdfs, uint32_t id, const SurfaceInteraction& si, Vec3f wo)
+        : bsdfs_(bsdfs), si_(si), id_(id), wo_(wo), composite_(bsdf_detail::isComposite(bsdfs[id].type)) {
+        if (composite_) return;
+        resolved_ = bsdf_detail::resolve(bsdfs, id, si, wo, false);
+        leaf_ = &bsdf_detail::applyBsdfTextures(*resolved_.bsdf, si, scratch_);
+        woLocal_ = resolved_.frame.toLocal(wo);
+    }
+    BsdfAtVertex(const BsdfAtVertex&) = delete;
+    BsdfAtVertex& operator=(const BsdfAtVertex&) = delete;
+
+    /// evalPdfBsdf(bsdfs, id, si, wo, wi, pdf).
+    CA_HD_INLINE Spectrum evalPdf(Vec3f wi, Float& pdf) const {
+        using namespace bsdf_detail;
+        if (composite_) return evalPdfBsdf(bsdfs_, id_, si_, wo_, wi, pdf);
+        Spectrum f;
+        Float p = 0;
+        if (sameSide(resolved_, wi)) {
+            const Vec3f wiLocal = resolved_.frame.toLocal(wi);
+            f += evalLocal(*leaf_, woLocal_, wiLocal) * shadowTerminator(resolved_, wi) * Float(1);
+            p += pdfLocal(*leaf_, woLocal_, wiLocal) * Float(1);
+        }
+        pdf = p;
+        return f;
+    }
+
+    /// sampleBsdf(bsdfs, id, si, wo, uLobe, u, out).
+    CA_HD_INLINE bool sample(Float uLobe, Vec2f u, BsdfSample& out) const {
+        using namespace bsdf_detail;
+        if (composite_) return sampleBsdf(bsdfs_, id_, si_, wo_, uLobe, u, out);
+        // LeafOps::sample and sampleBsdf's steps for a tree of one leaf.
+        if (!sampleLocal(*leaf_, woLocal_, uLobe, u, out)) return false;
+        out.wi = resolved_.frame.toWorld(out.wi);
+        out.weight = out.weight * shadowTerminator(resolved_, out.wi);
+        if (!sameSide(resolved_, out.wi) || !(out.pdf > 0)) return false;
+        const Spectrum value = out.weight * out.pdf;
+        out.weight = value * (1 / out.pdf);
+        return true;
+    }
+
+private:
+    Span<const Bsdf> bsdfs_;
+    const SurfaceInteraction& si_;
+    uint32_t id_;
+    Vec3f wo_;
+    bool composite_;
+    bsdf_detail::Resolved resolved_{};
+    const Bsdf* leaf_ = nullptr;
+    Vec3f woLocal_;
+    bsdf_detail::BsdfScratch scratch_;
+};
+
 /// Mitsuba's diffuse Fresnel reflectance (fresnel_diffuse_reflectance): the fraction of a
 /// uniform (cosine-weighted) radiance distribution reflected by a smooth interface of relative
 /// IOR eta, by the fits of Egan and Hilgeman 1973 (eta < 1) and d'Eon and Irving 2011.

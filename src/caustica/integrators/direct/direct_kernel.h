@@ -67,6 +67,7 @@ CA_HD Spectrum directRadiance(const SceneView& scene, const Intersector& accel, 
     if (!settings.hideEmitters) result += emittedRadiance(scene, si, wo);
 
     const uint32_t bsdf = scene.shapes[si.shape].bsdf;
+    const BsdfAtVertex bsdfAt(scene.bsdfs, bsdf, si, wo);  // resolved once for every sample here
     const DirectWeights w = directWeights(settings);
 
     // ---- Emitter sampling, where the BSDF has a non-delta part.
@@ -79,7 +80,7 @@ CA_HD Spectrum directRadiance(const SceneView& scene, const Intersector& accel, 
         if (!sampleLight(scene, si.p, uSelect, uLight, ls) || !(ls.pdf > 0) || ls.Le.isBlack())
             continue;
         Float bsdfPdf;
-        const Spectrum f = evalPdfBsdf(scene.bsdfs, bsdf, si, wo, ls.wi, bsdfPdf);
+        const Spectrum f = bsdfAt.evalPdf(ls.wi, bsdfPdf);
         if (f.isBlack()) continue;
         const Ray shadow = ls.dist < kInfinity ? spawnRayTo(si.p, si.ng, ls.p, ls.n)
                                                : spawnRay(si.p, si.ng, ls.wi);
@@ -98,7 +99,7 @@ CA_HD Spectrum directRadiance(const SceneView& scene, const Intersector& accel, 
         const Float uLobe = sampler.get1D();
         const Vec2f uDir = sampler.get2D();
         BsdfSample bs;
-        if (!sampleBsdf(scene.bsdfs, bsdf, si, wo, uLobe, uDir, bs) || bs.weight.isBlack())
+        if (!bsdfAt.sample(uLobe, uDir, bs) || bs.weight.isBlack())
             continue;
         const Ray next = spawnRay(si.p, si.ng, bs.wi);
         ++rayCount;

@@ -114,6 +114,7 @@ CA_HD_INLINE bool shadeHitAt(const SceneView& scene, PathState& path, const Surf
     if (path.depth + 1 >= maxDepth) return false;
 
     const uint32_t bsdf = scene.shapes[si.shape].bsdf;
+    const BsdfAtVertex bsdfAt(scene.bsdfs, bsdf, si, wo);  // resolved once for NEE and sampling
 
     // ---- Next-event estimation (skipped for purely specular surfaces).
     if (!isDeltaBsdf(scene.bsdfs, bsdf)) {
@@ -122,7 +123,7 @@ CA_HD_INLINE bool shadeHitAt(const SceneView& scene, PathState& path, const Surf
         LightSample ls;
         if (sampleLight(scene, si.p, uSelect, uLight, ls) && ls.pdf > 0 && !ls.Le.isBlack()) {
             Float bsdfPdf;
-            const Spectrum f = evalPdfBsdf(scene.bsdfs, bsdf, si, wo, ls.wi, bsdfPdf);
+            const Spectrum f = bsdfAt.evalPdf(ls.wi, bsdfPdf);
             if (!f.isBlack()) {
                 shadow.ray = ls.dist < kInfinity ? spawnRayTo(si.p, si.ng, ls.p, ls.n)
                                                  : spawnRay(si.p, si.ng, ls.wi);
@@ -141,7 +142,7 @@ CA_HD_INLINE bool shadeHitAt(const SceneView& scene, PathState& path, const Surf
     Float uLobe = sampler.get1D();
     Vec2f uDir = sampler.get2D();
     BsdfSample bs;
-    if (!sampleBsdf(scene.bsdfs, bsdf, si, wo, uLobe, uDir, bs)) return false;
+    if (!bsdfAt.sample(uLobe, uDir, bs)) return false;
     path.throughput *= bs.weight;
     path.etaScale *= bs.eta;
     path.prevBsdfPdf = bs.pdf;

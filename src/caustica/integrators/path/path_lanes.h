@@ -76,7 +76,7 @@ CA_HD void tracePathsSideBySide(const SceneView& scene, const Intersector& accel
             finish(item, sampler, radiance, rays);
         }
     } else {
-        PathLanes<L, Sampler, Start, Finish> lanes{scene, settings, start, finish};
+        PathLanes<L, Sampler, Start, Finish> lanes{scene, settings, start, finish, {}, {}, {}, {}, {}};
         traceLanes(scene, accel, count, lanes);
     }
 }

@@ -132,7 +132,7 @@ CA_HD void eyeEntries(const SceneView& view, const Intersector& accel, const Pat
             out.write(s, radiance, vp, has, rays);
         }
     } else {
-        EyeLanes<L> lanes{view, path, specularBelow, emitters, seed, width, first, out};
+        EyeLanes<L> lanes{view, path, specularBelow, emitters, seed, width, first, out, {}, {}, {}, {}, {}, {}, {}};
         traceLanes(view, accel, count, lanes);
     }
 }
@@ -276,7 +276,7 @@ CA_HD void photonPathGroup(const SceneView& view, const Intersector& accel, size
             photonPath(view, accel, i, iteration, seed, path, maxDepth, specularBelow, rayBlocks, sink);
     } else {
         PhotonLanes<L, std::remove_reference_t<Sink>> lanes{view, path, maxDepth, specularBelow, iteration, seed,
-                                                            first, sink};
+                                                            first, sink, {}, {}, 0};
         traceLanes(view, accel, count, lanes);
         sppmAtomicAdd(rayBlocks + first / 1024, lanes.rays);
     }

@@ -409,8 +409,8 @@ def mitsuba_worker(spec):
     print('READY ' + json.dumps(info), flush=True)
     for line in sys.stdin:  # one timed render per request line, until stdin closes
         sec, arr = render_once(spp)
-        print('RESULT ' + json.dumps({'seconds': sec, 'image_mean': float(arr[..., :3].astype(np.float64).mean()),
-                                      'image_shape': list(arr.shape)}), flush=True)
+        print('RESULT ' + json.dumps({'seconds': sec, 'image_mean': float(arr[..., :3].astype(np.float64).mean())}),
+              flush=True)
 
 
 class MitsubaSession:
@@ -418,7 +418,7 @@ class MitsubaSession:
     one more render. `note` says why it is unusable (then `info` is None)."""
 
     def __init__(self, a, variant, xml, defines, params):
-        self.a, self.params, self.info, self.note = a, params, None, ''
+        self.a, self.info, self.note = a, None, ''
         job = {'variant': variant, 'xml': os.path.abspath(xml), 'defines': defines, 'spp': params['spp'],
                'threads': a.threads}
         self.proc = subprocess.Popen([a.python, os.path.abspath(__file__), '--mitsuba-worker', json.dumps(job)],
@@ -517,6 +517,8 @@ def main():
                     help='seconds a Mitsuba worker may take to load and warm up, or for one render')
     ap.add_argument('--csv', default=os.path.join(ROOT, 'out', 'peer', 'peer-%s.csv' % datetime.date.today().isoformat()))
     a, extra = ap.parse_known_args()
+    if a.repeat < 1:
+        sys.exit('--repeat must be at least 1')
     try:
         w, h = (int(x) for x in a.res.lower().split('x'))
     except ValueError:
@@ -559,6 +561,7 @@ def main():
         for sess in sessions.values():
             sess.close()
         own = rounds['caustica']
+        cm = own[-1].get('image_mean')  # every round renders the same image (same seed)
         for renderer in renderers:
             done = [r for r in rounds[renderer] if r.get('samples_per_s')]
             best = min(done, key=lambda r: r['seconds']) if done else {}
@@ -572,7 +575,6 @@ def main():
                        ratio_caustica_over_this=statistics.median(ratios) if ratios else '',
                        ratio_min=min(ratios) if ratios else '', ratio_max=max(ratios) if ratios else '',
                        image_mean=best.get('image_mean', ''), note='; '.join(dict.fromkeys(notes)))
-            cm = own[-1].get('image_mean') if own else None
             if renderer != 'caustica' and cm and best.get('image_mean'):
                 rel = cm / best['image_mean'] - 1
                 if abs(rel) > 0.05:

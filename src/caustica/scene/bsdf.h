@@ -390,6 +390,75 @@ CA_HD_INLINE bool leafIsDelta(Span<const Bsdf> bsdfs, uint32_t id) {
     return isDeltaLocal(b);
 }
 
+/// A leaf BSDF prepared for queries from one viewing direction: resolved (twosided, bump or
+/// normal map), textured, and wo turned into its local frame, the steps every query of it starts
+/// with. Not copyable: the textured BSDF may live in its own scratch.
+class PreparedLeaf {
+public:
+    CA_HD_INLINE PreparedLeaf() {}  // prepare() before any query
+    CA_HD_INLINE PreparedLeaf(Span<const Bsdf> bsdfs, uint32_t id, const SurfaceInteraction& si,
+                              Vec3f wo, bool flip) {
+        prepare(bsdfs, id, si, wo, flip);
+    }
+    PreparedLeaf(const PreparedLeaf&) = delete;
+    PreparedLeaf& operator=(const PreparedLeaf&) = delete;
+
+    CA_HD_INLINE void prepare(Span<const Bsdf> bsdfs, uint32_t id, const SurfaceInteraction& si,
+                              Vec3f wo, bool flip) {
+        resolved_ = resolve(bsdfs, id, si, wo, flip);
+        bsdf_ = &applyBsdfTextures(*resolved_.bsdf, si, scratch_);
+        woLocal_ = resolved_.frame.toLocal(wo);
+    }
+
+    /// f(wo, wi) · |cosθi|, wi in world space.
+    CA_HD_INLINE Spectrum eval(Vec3f wi) const {
+        if (!sameSide(resolved_, wi)) return {};
+        return evalLocal(*bsdf_, woLocal_, resolved_.frame.toLocal(wi)) * shadowTerminator(resolved_, wi);
+    }
+
+    CA_HD_INLINE Float pdf(Vec3f wi) const {
+        if (!sameSide(resolved_, wi)) return 0;
+        return pdfLocal(*bsdf_, woLocal_, resolved_.frame.toLocal(wi));
+    }
+
+    /// eval (returned) and pdf (`pdf`) of a tree of this one leaf: each summed as the tree walk
+    /// sums its leaves (from zero, weight 1), so the bits are evalBsdf's and pdfBsdf's.
+    CA_HD_INLINE Spectrum evalPdfAlone(Vec3f wi, Float& pdf) const {
+        Spectrum f;
+        Float p = 0;
+        if (sameSide(resolved_, wi)) {
+            const Vec3f wiLocal = resolved_.frame.toLocal(wi);
+            f += evalLocal(*bsdf_, woLocal_, wiLocal) * shadowTerminator(resolved_, wi) * Float(1);
+            p += pdfLocal(*bsdf_, woLocal_, wiLocal) * Float(1);
+        }  // else: zero, as the walk's sum of a zero
+        pdf = p;
+        return f;
+    }
+
+    /// A sampled direction, out.wi in world space.
+    CA_HD_INLINE bool sample(Float uLobe, Vec2f u, BsdfSample& out) const {
+        if (!sampleLocal(*bsdf_, woLocal_, uLobe, u, out)) return false;
+        out.wi = resolved_.frame.toWorld(out.wi);
+        out.weight = out.weight * shadowTerminator(resolved_, out.wi);
+        return sameSide(resolved_, out.wi);
+    }
+
+    /// sample, then compositeSample's steps for a tree of this one leaf (no blend or mask to
+    /// back up through), so the bits are sampleBsdf's.
+    CA_HD_INLINE bool sampleAlone(Float uLobe, Vec2f u, BsdfSample& out) const {
+        if (!sample(uLobe, u, out) || !(out.pdf > 0)) return false;
+        const Spectrum value = out.weight * out.pdf;
+        out.weight = value * (1 / out.pdf);
+        return true;
+    }
+
+private:
+    Resolved resolved_{};
+    const Bsdf* bsdf_ = nullptr;
+    Vec3f woLocal_;
+    BsdfScratch scratch_;
+};
+
 /// The leaves of bsdf_composite.h's BSDF trees at `si` (everything but twosided, blendbsdf,
 /// mask and null above them), in world space; `flip`: under the back of a twosided.
 struct LeafOps {
@@ -399,30 +468,16 @@ struct LeafOps {
     CA_HD_INLINE Vec3f normal() const { return si.ns; }
 
     CA_HD_INLINE Spectrum eval(uint32_t id, bool flip, Vec3f wo, Vec3f wi) const {
-        const Resolved r = resolve(bsdfs, id, si, wo, flip);
-        if (!sameSide(r, wi)) return {};
-        BsdfScratch scratch;
-        const Bsdf& b = applyBsdfTextures(*r.bsdf, si, scratch);
-        return evalLocal(b, r.frame.toLocal(wo), r.frame.toLocal(wi)) * shadowTerminator(r, wi);
+        return PreparedLeaf(bsdfs, id, si, wo, flip).eval(wi);
     }
 
     CA_HD_INLINE Float pdf(uint32_t id, bool flip, Vec3f wo, Vec3f wi) const {
-        const Resolved r = resolve(bsdfs, id, si, wo, flip);
-        if (!sameSide(r, wi)) return 0;
-        BsdfScratch scratch;
-        const Bsdf& b = applyBsdfTextures(*r.bsdf, si, scratch);
-        return pdfLocal(b, r.frame.toLocal(wo), r.frame.toLocal(wi));
+        return PreparedLeaf(bsdfs, id, si, wo, flip).pdf(wi);
     }
 
     CA_HD_INLINE bool sample(uint32_t id, bool flip, Vec3f wo, Float uLobe, Vec2f u,
                              BsdfSample& out) const {
-        const Resolved r = resolve(bsdfs, id, si, wo, flip);
-        BsdfScratch scratch;
-        const Bsdf& b = applyBsdfTextures(*r.bsdf, si, scratch);
-        if (!sampleLocal(b, r.frame.toLocal(wo), uLobe, u, out)) return false;
-        out.wi = r.frame.toWorld(out.wi);
-        out.weight = out.weight * shadowTerminator(r, out.wi);
-        return sameSide(r, out.wi);
+        return PreparedLeaf(bsdfs, id, si, wo, flip).sample(uLobe, u, out);
     }
 
     CA_HD_INLINE bool isDelta(uint32_t id) const { return leafIsDelta(bsdfs, id); }
@@ -472,19 +527,7 @@ CA_HD_INLINE Spectrum evalPdfBsdf(Span<const Bsdf> bsdfs, uint32_t id, const Sur
         pdf = pdfBsdf(bsdfs, id, si, wo, wi);
         return evalBsdf(bsdfs, id, si, wo, wi);
     }
-    // LeafOps::eval and LeafOps::pdf in one, summed as evalBsdf and pdfBsdf sum them.
-    const Resolved r = resolve(bsdfs, id, si, wo, false);
-    Spectrum f;
-    Float p = 0;
-    if (sameSide(r, wi)) {
-        BsdfScratch scratch;
-        const Bsdf& b = applyBsdfTextures(*r.bsdf, si, scratch);
-        const Vec3f woLocal = r.frame.toLocal(wo), wiLocal = r.frame.toLocal(wi);
-        f += evalLocal(b, woLocal, wiLocal) * shadowTerminator(r, wi) * Float(1);
-        p += pdfLocal(b, woLocal, wiLocal) * Float(1);
-    }  // else: zero, as the walk's sum of a zero
-    pdf = p;
-    return f;
+    return PreparedLeaf(bsdfs, id, si, wo, false).evalPdfAlone(wi, pdf);
 }
 
 /// Samples an incident direction. `uLobe` chooses between lobes (dielectric reflection or
@@ -495,11 +538,7 @@ CA_HD_INLINE bool sampleBsdf(Span<const Bsdf> bsdfs, uint32_t id, const SurfaceI
     const bsdf_detail::LeafOps leaf{bsdfs, si};
     if (bsdf_detail::isComposite(bsdfs[id].type))
         return bsdf_detail::compositeSample(bsdfs, leaf, id, wo, uLobe, u, out);
-    // compositeSample's steps for a tree of one leaf: no blend or mask to back up through.
-    if (!leaf.sample(id, false, wo, uLobe, u, out) || !(out.pdf > 0)) return false;
-    const Spectrum value = out.weight * out.pdf;
-    out.weight = value * (1 / out.pdf);
-    return true;
+    return bsdf_detail::PreparedLeaf(bsdfs, id, si, wo, false).sampleAlone(uLobe, u, out);
 }
 
 /// BSDF `id` at `si` seen from `wo`, prepared once for the two queries a path vertex makes:
@@ -512,41 +551,21 @@ class BsdfAtVertex {
 public:
     CA_HD_INLINE BsdfAtVertex(Span<const Bsdf> bsdfs, uint32_t id, const SurfaceInteraction& si, Vec3f wo)
         : bsdfs_(bsdfs), si_(si), id_(id), wo_(wo), composite_(bsdf_detail::isComposite(bsdfs[id].type)) {
-        if (composite_) return;
-        resolved_ = bsdf_detail::resolve(bsdfs, id, si, wo, false);
-        leaf_ = &bsdf_detail::applyBsdfTextures(*resolved_.bsdf, si, scratch_);
-        woLocal_ = resolved_.frame.toLocal(wo);
+        if (!composite_) leaf_.prepare(bsdfs, id, si, wo, false);
     }
     BsdfAtVertex(const BsdfAtVertex&) = delete;
     BsdfAtVertex& operator=(const BsdfAtVertex&) = delete;
 
     /// evalPdfBsdf(bsdfs, id, si, wo, wi, pdf).
     CA_HD_INLINE Spectrum evalPdf(Vec3f wi, Float& pdf) const {
-        using namespace bsdf_detail;
         if (composite_) return evalPdfBsdf(bsdfs_, id_, si_, wo_, wi, pdf);
-        Spectrum f;
-        Float p = 0;
-        if (sameSide(resolved_, wi)) {
-            const Vec3f wiLocal = resolved_.frame.toLocal(wi);
-            f += evalLocal(*leaf_, woLocal_, wiLocal) * shadowTerminator(resolved_, wi) * Float(1);
-            p += pdfLocal(*leaf_, woLocal_, wiLocal) * Float(1);
-        }
-        pdf = p;
-        return f;
+        return leaf_.evalPdfAlone(wi, pdf);
     }
 
     /// sampleBsdf(bsdfs, id, si, wo, uLobe, u, out).
     CA_HD_INLINE bool sample(Float uLobe, Vec2f u, BsdfSample& out) const {
-        using namespace bsdf_detail;
         if (composite_) return sampleBsdf(bsdfs_, id_, si_, wo_, uLobe, u, out);
-        // LeafOps::sample and sampleBsdf's steps for a tree of one leaf.
-        if (!sampleLocal(*leaf_, woLocal_, uLobe, u, out)) return false;
-        out.wi = resolved_.frame.toWorld(out.wi);
-        out.weight = out.weight * shadowTerminator(resolved_, out.wi);
-        if (!sameSide(resolved_, out.wi) || !(out.pdf > 0)) return false;
-        const Spectrum value = out.weight * out.pdf;
-        out.weight = value * (1 / out.pdf);
-        return true;
+        return leaf_.sampleAlone(uLobe, u, out);
     }
 
 private:
@@ -555,10 +574,7 @@ private:
     uint32_t id_;
     Vec3f wo_;
     bool composite_;
-    bsdf_detail::Resolved resolved_{};
-    const Bsdf* leaf_ = nullptr;
-    Vec3f woLocal_;
-    bsdf_detail::BsdfScratch scratch_;
+    bsdf_detail::PreparedLeaf leaf_;
 };
 
 /// Mitsuba's diffuse Fresnel reflectance (fresnel_diffuse_reflectance): the fraction of a

@@ -53,9 +53,9 @@ std::vector<Ray> packetRays(const Scene& scene, const EmbreeIntersector& single,
 
 /// Every packet answer equals the single-ray answer bit for bit: hit or miss, t, primitive,
 /// barycentrics, occlusion. Packets of every size 1..16 in turn, so every lane count occurs,
-/// the last packet partial.
+/// the last packet partial. `coherent`: the closest-hit queries carry the coherence hint.
 template <class I>
-void expectPacketsEqualSingleRays(const I& accel, const std::vector<Ray>& rays) {
+void expectPacketsEqualSingleRays(const I& accel, const std::vector<Ray>& rays, bool coherent = false) {
     size_t hits = 0, misses = 0;
     for (size_t first = 0, size = 1; first < rays.size(); first += size, size = size % 16 + 1) {
         const int m = int(std::min(size, rays.size() - first));
@@ -68,7 +68,7 @@ void expectPacketsEqualSingleRays(const I& accel, const std::vector<Ray>& rays) 
             got[k].t = -7;  // must be overwritten, also on a miss
             hitPtrs[k] = &got[k];
         }
-        intersectPacket(accel, m, ptrs, hitPtrs, found);
+        intersectPacket(accel, m, ptrs, hitPtrs, found, coherent);
         occludedPacket(accel, m, ptrs, occluded);
         for (int k = 0; k < m; ++k) {
             const Ray& ray = rays[first + k];
@@ -108,7 +108,33 @@ TEST(IntersectorPacket, EmbreePacketsOfEveryWidthEqualSingleRays) {
             EmbreeIntersector it = native;
             it.packetWidth = width;
             expectPacketsEqualSingleRays(it, rays);
+            SCOPED_TRACE("coherent");
+            expectPacketsEqualSingleRays(it, rays, true);
         }
+    }
+}
+
+/// Bundles of rays as a camera sends them (one origin, directions a few degrees apart: what the
+/// wavefront marks coherent), where Embree's coherent mode traverses a packet as one: the same
+/// answers as single rays.
+TEST(IntersectorPacket, EmbreeCoherentCameraBundlesEqualSingleRays) {
+    const Scene scene = mixedScene(15);
+    const EmbreeScene embree(scene);
+    test::TestRng rng(16);
+    std::vector<Ray> rays;
+    for (int bundle = 0; bundle < 200; ++bundle) {
+        const Vec3f origin = rng.inBox(Vec3f(-8), Vec3f(8));
+        const Vec3f axis = rng.direction();
+        for (int k = 0; k < 16; ++k)
+            rays.push_back(Ray{origin, normalize(axis + rng.direction() * 0.05f), kInfinity});
+    }
+    const EmbreeIntersector native = embree.intersector();
+    for (int width : {16, 8, 4}) {
+        if (width > embree.nativePacketWidth()) continue;
+        SCOPED_TRACE("packet width " + std::to_string(width));
+        EmbreeIntersector it = native;
+        it.packetWidth = width;
+        expectPacketsEqualSingleRays(it, rays, true);
     }
 }
 

@@ -182,15 +182,16 @@ void fillPacket(R& r, int (&valid)[W], int m, const Ray* const* rays) {
 
 /// f(context, first, m) for the packets [first, first + m) of n rays, m <= W.
 template <int W, class F>
-void forEachPacket(int n, F&& f) {
+void forEachPacket(int n, F&& f, bool coherent = false) {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
+    if (coherent) context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     for (int first = 0; first < n; first += W) f(context, first, std::min(W, n - first));
 }
 
 template <int W>
 void intersectPackets(const EmbreeIntersector& it, int n, const Ray* const* rays, Hit* const* hits,
-                      uint32_t* found) {
+                      uint32_t* found, bool coherent) {
     forEachPacket<W>(n, [&](RTCIntersectContext& context, int first, int m) {
         alignas(64) int valid[W];
         alignas(64) typename Packet<W>::RayHit rh;
@@ -207,7 +208,7 @@ void intersectPackets(const EmbreeIntersector& it, int n, const Ray* const* rays
                                            rh.hit.u[k], rh.hit.v[k])
                                    : Hit{};
         }
-    });
+    }, coherent);
 }
 
 template <int W>
@@ -361,11 +362,12 @@ bool EmbreeIntersector::occluded(const Ray& ray) const {
     return r.tfar < 0;
 }
 
-void EmbreeIntersector::intersectPacket(int n, const Ray* const* rays, Hit* const* hits, uint32_t* found) const {
+void EmbreeIntersector::intersectPacket(int n, const Ray* const* rays, Hit* const* hits, uint32_t* found,
+                                        bool coherent) const {
     switch (scene ? packetWidth : 1) {
-    case 16: return intersectPackets<16>(*this, n, rays, hits, found);
-    case 8: return intersectPackets<8>(*this, n, rays, hits, found);
-    case 4: return intersectPackets<4>(*this, n, rays, hits, found);
+    case 16: return intersectPackets<16>(*this, n, rays, hits, found, coherent);
+    case 8: return intersectPackets<8>(*this, n, rays, hits, found, coherent);
+    case 4: return intersectPackets<4>(*this, n, rays, hits, found, coherent);
     default: return intersectEach(*this, n, rays, hits, found);
     }
 }

@@ -34,7 +34,8 @@ struct EmbreeIntersector {
     bool intersect(const Ray& ray, Hit& hit) const;
     bool occluded(const Ray& ray) const;
     /// See intersectPacket / occludedPacket (intersector.h); n <= kPacketSize.
-    void intersectPacket(int n, const Ray* const* rays, Hit* const* hits, uint32_t* found) const;
+    void intersectPacket(int n, const Ray* const* rays, Hit* const* hits, uint32_t* found,
+                         bool coherent = false) const;
     void occludedPacket(int n, const Ray* const* rays, uint32_t* occluded) const;
 };
 

@@ -64,11 +64,14 @@ CA_HD_INLINE void occludedEach(const I& accel, int n, const Ray* const* rays, ui
 
 /// Closest hits of rays[0..n) (n <= rayPacketSize<I>()): found[k] = 1 and hits[k] = the hit, or
 /// found[k] = 0 and hits[k] = Hit{} on a miss. The same hits as n single-ray `intersect` calls.
+/// `coherent`: the rays start close together in nearly one direction (camera rays of neighbouring
+/// samples), which lets a packet intersector traverse them as one (Embree's coherent mode); a
+/// hint only, the hits are the same.
 template <class I>
 CA_HD_INLINE void intersectPacket(const I& accel, int n, const Ray* const* rays, Hit* const* hits,
-                                  uint32_t* found) {
+                                  uint32_t* found, bool coherent = false) {
     if constexpr (rayPacketSize<I>() > 1)
-        accel.intersectPacket(n, rays, hits, found);
+        accel.intersectPacket(n, rays, hits, found, coherent);
     else
         intersectEach(accel, n, rays, hits, found);
 }

@@ -100,6 +100,10 @@ uint64_t traceChunk(Exec exec, const SceneView& scene, const Intersector& accel,
         const uint32_t* liveQ = live;
         // ---- Extend: closest hit of every live path's ray (`alive` holds "found" until shade), a
         // packet of queue entries per call (Embree's packet queries on a CPU; one ray on a GPU).
+        // The first extend stage traces camera rays, neighbouring samples side by side: coherent
+        // packets (intersectPacket). Their shadow rays are not marked: Embree's coherent mode made
+        // them slower (more instructions on every bundled scene, callgrind).
+        const bool cameraRays = firstBounce;
         launch(exec, "wavefront.extend", packetCount(liveCount), [=] CA_HD(size_t p) {
             const size_t j0 = p * kPacket;
             const int m = int(min(kPacket, liveCount - j0));
@@ -110,7 +114,7 @@ uint64_t traceChunk(Exec exec, const SceneView& scene, const Intersector& accel,
                 rays[k] = &w.state[i].ray;
                 hits[k] = &w.hit[i];
             }
-            intersectPacket(accel, m, rays, hits, w.alive + j0);
+            intersectPacket(accel, m, rays, hits, w.alive + j0, cameraRays);
         });
         rays += liveCount;
         // ---- AOVs of the camera rays, from their hits (every path is in the first queue).

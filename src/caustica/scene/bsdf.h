@@ -61,11 +61,8 @@ union BsdfScratch {
     Bsdf bsdf;
 };
 
-/// `b` with its textured parameters (Bsdf::textures) replaced by the textures' values at si.uv:
-/// `b` itself when it has none, else a copy in `scratch`.
-CA_HD_INLINE const Bsdf& applyBsdfTextures(const Bsdf& b, const SurfaceInteraction& si,
-                                           BsdfScratch& scratch) {
-    if (b.numTextures == 0) return b;
+/// applyBsdfTextures for a BSDF with textures.
+CA_HD_INLINE const Bsdf& texturedBsdfCopy(const Bsdf& b, const SurfaceInteraction& si, BsdfScratch& scratch) {
     Bsdf& storage = *new (&scratch.bsdf) Bsdf(b);
     for (uint32_t i = 0; i < b.numTextures && i < uint32_t(kMaxBsdfTextures); ++i) {
         const uint32_t tex = b.textures[i].texture;
@@ -89,6 +86,13 @@ CA_HD_INLINE const Bsdf& applyBsdfTextures(const Bsdf& b, const SurfaceInteracti
         }
     }
     return storage;
+}
+
+/// `b` with its textured parameters (Bsdf::textures) replaced by the textures' values at si.uv:
+/// `b` itself when it has none (inlined: most BSDFs), else a copy in `scratch`.
+CA_HD_FORCE_INLINE const Bsdf& applyBsdfTextures(const Bsdf& b, const SurfaceInteraction& si,
+                                                 BsdfScratch& scratch) {
+    return b.numTextures == 0 ? b : texturedBsdfCopy(b, si, scratch);
 }
 
 /// The frame of a bumpmap or normalmap `b` nested in a frame `outer` (world axes, z possibly

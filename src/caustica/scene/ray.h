@@ -48,7 +48,7 @@ CA_HD_INLINE Float nextFloatTowardZero(Float x) {
 /// does not hit the surface it starts on. Scale-aware: the offset is a fixed number of ulps of the
 /// coordinate, falling back to a tiny absolute offset near the origin (Wächter and Binder, "A Fast
 /// and Robust Method for Avoiding Self-Intersection", Ray Tracing Gems, 2019, ch. 6).
-CA_HD_INLINE Vec3f offsetRayOrigin(Vec3f p, Vec3f n) {
+CA_HD_FORCE_INLINE Vec3f offsetRayOrigin(Vec3f p, Vec3f n) {
     constexpr Float kOrigin = 1.0f / 32.0f, kFloatScale = 1.0f / 65536.0f, kIntScale = 256.0f;
     Vec3f out;
     for (int i = 0; i < 3; ++i) {

@@ -13,6 +13,16 @@
 #define CA_HD_INLINE inline
 #endif
 
+// CA_HD_INLINE with inlining forced on the host as well (g++ otherwise keeps some small, hot
+// functions of the per-hit code as calls: each then passes its vectors through the stack).
+#if defined(__CUDACC__)
+#define CA_HD_FORCE_INLINE __host__ __device__ __forceinline__
+#elif defined(__GNUC__)
+#define CA_HD_FORCE_INLINE inline __attribute__((always_inline))
+#else
+#define CA_HD_FORCE_INLINE inline
+#endif
+
 #if defined(__CUDA_ARCH__)
 #define CA_GPU_CODE 1
 #else

@@ -176,7 +176,9 @@ TEST(Embree, EveryInstructionSetCapMatchesBruteForce) {
         options.isa = isa;
         const EmbreeScene embree(scene, options);
         EXPECT_EQ(embree.isa(), isa);
-        if (isa == EmbreeIsa::Sse42) EXPECT_EQ(embree.packetWidth(), 4);
+        if (isa == EmbreeIsa::Sse42) {
+            EXPECT_EQ(embree.packetWidth(), 4);
+        }
         EXPECT_GE(embree.packetWidth(), 4);  // every x86-64 CPU Embree runs on has SSE4.2's 4-wide
     }
 }

@@ -88,6 +88,19 @@ void expectPacketsEqualSingleRays(const I& accel, const std::vector<Ray>& rays, 
     EXPECT_GT(misses, rays.size() / 10);
 }
 
+/// Embree's scene of `scene` under the instruction-set cap `isa`.
+EmbreeScene embreeWithIsa(const Scene& scene, EmbreeIsa isa) {
+    EmbreeSceneOptions options;
+    options.isa = isa;
+    return EmbreeScene(scene, options);
+}
+
+/// `it` answering packets of `width` rays per Embree call.
+EmbreeIntersector withPacketWidth(EmbreeIntersector it, int width) {
+    it.packetWidth = width;
+    return it;
+}
+
 // With the cap `auto` chooses on this CPU (and with SSE4.2, its choice on CPUs without AVX-512 or
 // whose clock AVX-512 lowers) Embree's packets answer as its single rays, to the bit: what makes
 // the wavefront's image the megakernel's (embree_isa.h; Embree's AVX2 kernels would not).
@@ -95,9 +108,7 @@ TEST(IntersectorPacket, EmbreePacketsOfEveryWidthEqualSingleRays) {
     const Scene scene = mixedScene(11);
     for (EmbreeIsa isa : {EmbreeIsa::Auto, EmbreeIsa::Sse42}) {
         SCOPED_TRACE(embreeIsaName(isa));
-        EmbreeSceneOptions options;
-        options.isa = isa;
-        const EmbreeScene embree(scene, options);
+        const EmbreeScene embree = embreeWithIsa(scene, isa);
         const EmbreeIntersector native = embree.intersector();
         const std::vector<Ray> rays = packetRays(scene, native, 3000, 12);
         // Every width up to the native one (16 on an AVX-512 CPU); 1 is the single-ray fallback.
@@ -105,8 +116,7 @@ TEST(IntersectorPacket, EmbreePacketsOfEveryWidthEqualSingleRays) {
         for (int width : {16, 8, 4, 1}) {
             if (width > embree.nativePacketWidth()) continue;
             SCOPED_TRACE("packet width " + std::to_string(width));
-            EmbreeIntersector it = native;
-            it.packetWidth = width;
+            const EmbreeIntersector it = withPacketWidth(native, width);
             expectPacketsEqualSingleRays(it, rays);
             SCOPED_TRACE("coherent");
             expectPacketsEqualSingleRays(it, rays, true);
@@ -130,15 +140,12 @@ TEST(IntersectorPacket, EmbreeCoherentCameraBundlesEqualSingleRays) {
     }
     for (EmbreeIsa isa : {EmbreeIsa::Auto, EmbreeIsa::Widest}) {
         SCOPED_TRACE(embreeIsaName(isa));
-        EmbreeSceneOptions options;
-        options.isa = isa;
-        const EmbreeScene embree(scene, options);
+        const EmbreeScene embree = embreeWithIsa(scene, isa);
         const EmbreeIntersector native = embree.intersector();
         for (int width : {16, 8, 4}) {
             if (width > embree.nativePacketWidth()) continue;
             SCOPED_TRACE("packet width " + std::to_string(width));
-            EmbreeIntersector it = native;
-            it.packetWidth = width;
+            const EmbreeIntersector it = withPacketWidth(native, width);
             expectPacketsEqualSingleRays(it, rays, true);
         }
     }

@@ -452,12 +452,26 @@ public:
         return true;
     }
 
+    /// The leaf resolved at the vertex (frame, perturbed, ...), its textured BSDF and wo in its
+    /// local frame, for callers that take a shortcut through one kind of leaf (sppm's gather).
+    CA_HD_INLINE const Resolved& resolved() const { return resolved_; }
+    CA_HD_INLINE const Bsdf& bsdf() const { return *bsdf_; }
+    CA_HD_INLINE Vec3f woLocal() const { return woLocal_; }
+
 private:
     BsdfScratch scratch_;  // first: bsdf_ may point into it
     Resolved resolved_;
     const Bsdf* bsdf_;
     Vec3f woLocal_;
 };
+
+/// Room for a PreparedLeaf that is built (placement new) only when there is a plain leaf to
+/// prepare: nothing is initialised otherwise. Never destroyed, which PreparedLeaf allows.
+union PreparedLeafSlot {
+    CA_HD_INLINE PreparedLeafSlot() {}
+    PreparedLeaf leaf;
+};
+static_assert(std::is_trivially_destructible_v<PreparedLeaf>, "a PreparedLeafSlot is never destroyed");
 
 /// The leaves of bsdf_composite.h's BSDF trees at `si` (everything but twosided, blendbsdf,
 /// mask and null above them), in world space; `flip`: under the back of a twosided.
@@ -551,7 +565,7 @@ class BsdfAtVertex {
 public:
     CA_HD_INLINE BsdfAtVertex(Span<const Bsdf> bsdfs, uint32_t id, const SurfaceInteraction& si, Vec3f wo)
         : bsdfs_(bsdfs), si_(si), id_(id), wo_(wo), composite_(bsdf_detail::isComposite(bsdfs[id].type)) {
-        if (!composite_) new (&storage_.leaf) bsdf_detail::PreparedLeaf(bsdfs, id, si, wo, false);
+        if (!composite_) new (&slot_.leaf) bsdf_detail::PreparedLeaf(bsdfs, id, si, wo, false);
     }
     BsdfAtVertex(const BsdfAtVertex&) = delete;
     BsdfAtVertex& operator=(const BsdfAtVertex&) = delete;
@@ -559,13 +573,13 @@ public:
     /// evalPdfBsdf(bsdfs, id, si, wo, wi, pdf).
     CA_HD_INLINE Spectrum evalPdf(Vec3f wi, Float& pdf) const {
         if (composite_) return evalPdfBsdf(bsdfs_, id_, si_, wo_, wi, pdf);
-        return storage_.leaf.evalPdfAlone(wi, pdf);
+        return slot_.leaf.evalPdfAlone(wi, pdf);
     }
 
     /// sampleBsdf(bsdfs, id, si, wo, uLobe, u, out).
     CA_HD_INLINE bool sample(Float uLobe, Vec2f u, BsdfSample& out) const {
         if (composite_) return sampleBsdf(bsdfs_, id_, si_, wo_, uLobe, u, out);
-        return storage_.leaf.sampleAlone(uLobe, u, out);
+        return slot_.leaf.sampleAlone(uLobe, u, out);
     }
 
 private:
@@ -574,11 +588,7 @@ private:
     uint32_t id_;
     Vec3f wo_;
     bool composite_;
-    union LeafStorage {  // a plain leaf's, built only for one (trivially destructible)
-        CA_HD_INLINE LeafStorage() {}
-        bsdf_detail::PreparedLeaf leaf;
-    } storage_;
-    static_assert(std::is_trivially_destructible_v<bsdf_detail::PreparedLeaf>, "storage_ is never destroyed");
+    bsdf_detail::PreparedLeafSlot slot_;  // a plain leaf's, built only for one
 };
 
 /// Mitsuba's diffuse Fresnel reflectance (fresnel_diffuse_reflectance): the fraction of a

@@ -62,7 +62,7 @@ CA_HD_FORCE_INLINE Vec3f offsetRayOrigin(Vec3f p, Vec3f n) {
 /// spawnRay written into `ray` field by field. (g++ assembles a returned Ray on the stack from
 /// 8- and 4-byte stores and copies it on with 16-byte loads, which wait for those stores to
 /// retire: a store-forwarding stall at every bounce of a path.)
-CA_HD_INLINE void spawnRayInto(Ray& ray, Vec3f p, Vec3f ng, Vec3f d) {
+CA_HD_FORCE_INLINE void spawnRayInto(Ray& ray, Vec3f p, Vec3f ng, Vec3f d) {
     ray.o = offsetRayOrigin(p, dot(d, ng) > 0 ? ng : -ng);
     ray.d = d;
     ray.tMax = kInfinity;

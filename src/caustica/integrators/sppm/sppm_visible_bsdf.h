@@ -13,11 +13,11 @@ namespace caustica {
 
 /// evalBsdf(bsdfs, vp.bsdf, vp.si, vp.wo, wi) for a fixed visible point, bit for bit the same
 /// value: when the tree has exactly one leaf for vp.wo (a plain BSDF, or one under twosided,
-/// bumpmap, normalmap, or a blend/mask with one child of weight > 0), that leaf's resolved frame,
-/// textured parameters, local wo and weight are kept and each eval() does what LeafOps::eval and
-/// subtreeEval do with them, in the same floating-point operations (a diffuse leaf in an
-/// unperturbed frame: only those its value depends on); other trees call evalBsdf.
-/// Holds a pointer into itself (the textured copy): not copyable.
+/// bumpmap, normalmap, or a blend/mask with one child of weight > 0), that leaf is prepared once
+/// (bsdf_detail::PreparedLeaf: resolved frame, textured parameters, local wo) and each eval()
+/// sums its value times the leaf's weight as subtreeEval does (a diffuse leaf in an unperturbed
+/// frame: only the operations its value depends on); other trees call evalBsdf.
+/// Not copyable (the prepared leaf may point into itself).
 class SppmVisibleBsdf {
 public:
     CA_HD SppmVisibleBsdf(Span<const Bsdf> bsdfs, const SppmVisiblePoint& vp) : bsdfs_(bsdfs), vp_(vp) {
@@ -34,10 +34,8 @@ public:
         single_ = leaves == 1;
         none_ = leaves == 0;
         if (!single_) return;
-        resolved_ = resolve(bsdfs, leaf, vp.si, vp.wo, flip);
-        leafBsdf_ = &applyBsdfTextures(*resolved_.bsdf, vp.si, scratch_);
-        woLocal_ = resolved_.frame.toLocal(vp.wo);
-        diffuse_ = leafBsdf_->type == BsdfType::Diffuse && !resolved_.perturbed;
+        new (&slot_.leaf) PreparedLeaf(bsdfs, leaf, vp.si, vp.wo, flip);
+        diffuse_ = slot_.leaf.bsdf().type == BsdfType::Diffuse && !slot_.leaf.resolved().perturbed;
     }
     SppmVisibleBsdf(const SppmVisibleBsdf&) = delete;
     SppmVisibleBsdf& operator=(const SppmVisibleBsdf&) = delete;
@@ -49,24 +47,20 @@ public:
         // A diffuse leaf in an unperturbed frame: sameSide holds, shadowTerminator is 1 (a product
         // that changes no bit) and evalLocal reads only the local z of wi, which is toLocal's third
         // dot product, dot(wi, n); the sum over the one leaf as subtreeEval forms it.
+        const bsdf_detail::PreparedLeaf& leaf = slot_.leaf;
         Spectrum sum;
-        const Float z = dot(wi, resolved_.frame.n);
-        if (woLocal_.z <= 0 || z <= 0) return sum;
-        sum += leafBsdf_->reflectance * (kInvPi * z) * weight_;
+        const Float z = dot(wi, leaf.resolved().frame.n);
+        if (leaf.woLocal().z <= 0 || z <= 0) return sum;
+        sum += leaf.bsdf().reflectance * (kInvPi * z) * weight_;
         return sum;
     }
 
 private:
-    /// eval for every other tree: the resolved leaf (as LeafOps::eval), or evalBsdf.
+    /// eval for every other tree: the prepared leaf (LeafOps::eval's value), or evalBsdf.
     CA_HD Spectrum evalResolved(Vec3f wi) const {
-        using namespace bsdf_detail;
         if (!single_) return none_ ? Spectrum{} : evalBsdf(bsdfs_, vp_.bsdf, vp_.si, vp_.wo, wi);
-        // subtreeEval's sum over the one leaf, of LeafOps::eval's value.
-        Spectrum sum;
-        const Spectrum f = sameSide(resolved_, wi) ? evalLocal(*leafBsdf_, woLocal_, resolved_.frame.toLocal(wi)) *
-                                                         shadowTerminator(resolved_, wi)
-                                                   : Spectrum{};
-        sum += f * weight_;
+        Spectrum sum;  // subtreeEval's sum over the one leaf
+        sum += slot_.leaf.eval(wi) * weight_;
         return sum;
     }
 
@@ -74,10 +68,7 @@ private:
     const SppmVisiblePoint& vp_;
     bool single_ = false, none_ = false, diffuse_ = false;
     Float weight_ = 0;
-    bsdf_detail::Resolved resolved_{};
-    const Bsdf* leafBsdf_ = nullptr;
-    bsdf_detail::BsdfScratch scratch_;
-    Vec3f woLocal_;
+    bsdf_detail::PreparedLeafSlot slot_;  // built only for a single leaf
 };
 
 }  // namespace caustica

@@ -11,6 +11,9 @@
             iterations^-alpha-ish (variance ~ 1/(i R_i^2) and bias^2 ~ R_i^4 with R_i^2 ~ i^(alpha-1)).
   memory    driver memory (peak device bytes from the statistics) at a resolution and photon count,
             e.g. 1920x1080 with 2^20 photons per iteration.
+  roulette  the photon roulette rules (albedo, throughput) side by side: relMSE against --ref at
+            equal time (--seconds per render) or equal iterations (--spp), rules alternating and a
+            new seed each repeat, with time, iterations, rays and stored photons per photon path.
 
 Every render is `caustica render ... --stats-json`; the error is `caustica compare`'s relMSE with
 the reference's noise removed (REF.var.exr beside REF.exr, as scripts/make_references.py writes).
@@ -20,6 +23,8 @@ Examples:
   bench/sppm_bench.py converge scenes/cornell-water/scene.xml --res 256x256 \\
       --ref scenes/cornell-water/reference/cornell-water-256.exr --iterations 4,8,16,32,64,128 --csv out/conv.csv
   bench/sppm_bench.py memory scenes/cornell-water/scene.xml --res 1920x1080 --photons 1048576 --sppm-direction gather
+  bench/sppm_bench.py roulette scenes/cornell-water/scene.xml --res 256x256 --seconds 20 --repeat 3 \
+      --ref scenes/cornell-water/reference/cornell-water-256.exr --csv out/roulette.csv
 
 Options the script does not know are passed on to every `caustica render`.
 """
@@ -153,6 +158,44 @@ def cmd_converge(a):
     print('wrote', plot)
 
 
+def compare(a, img):
+    """relMSE of img against --ref (the reference's noise removed when REF.var.exr is beside it)."""
+    stem, ext = os.path.splitext(a.ref)
+    var = stem + '.var' + ext
+    cmp = [a.caustica, 'compare', img, a.ref, '--json'] + (['--ref-var', var] if os.path.exists(var) else [])
+    m = json.loads(run(cmp))
+    return float(m['relmse_ref_noise_removed'] if os.path.exists(var) else m['relmse'])
+
+
+def cmd_roulette(a):
+    first_seed = a.seed
+    budget = ['--time', str(a.seconds)] if a.seconds else ['--spp', str(a.spp)]
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for rep in range(a.repeat):
+            rules = ('albedo', 'throughput') if rep % 2 == 0 else ('throughput', 'albedo')
+            a.seed = first_seed + rep
+            for rule in rules:
+                img, st = render(a, tmp, budget + ['--sppm-roulette', rule])
+                paths = float(st['sppm_photon_paths'])
+                row = {'rule': rule, 'repeat': rep, 'seed': a.seed, 'seconds': st['seconds'],
+                       'iterations': st['sppm_iterations'], 'relmse': compare(a, img),
+                       'photon_paths_per_second': st['sppm_photon_paths_per_second'],
+                       'rays_per_photon_path_eye_included': float(st['rays']) / paths if paths else '',
+                       'stored_photons_last_iteration': st.get('sppm_stored_photons', ''),
+                       'photon_seconds': st.get('sppm_photon_seconds', '')}
+                rows.append(row)
+                print('%-10s seed %d: %.1f s, %d iterations, relMSE %.5g, %.3g photon paths/s' % (
+                    rule, row['seed'], float(row['seconds']), int(row['iterations']), row['relmse'],
+                    float(row['photon_paths_per_second'])), flush=True)
+    write_csv(a.csv, rows)
+    for rule in ('albedo', 'throughput'):
+        errs = sorted(r['relmse'] for r in rows if r['rule'] == rule)
+        its = sorted(float(r['iterations']) for r in rows if r['rule'] == rule)
+        print('%-10s relMSE median %.5g (%s), iterations median %g' % (
+            rule, errs[len(errs) // 2], ', '.join('%.4g' % e for e in errs), its[len(its) // 2]))
+
+
 def cmd_memory(a):
     with tempfile.TemporaryDirectory() as tmp:
         _, st = render(a, tmp, ['--spp', str(a.spp), '--sppm-photons', str(a.photons)])
@@ -166,14 +209,15 @@ def cmd_memory(a):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument('what', choices=['options', 'structures', 'converge', 'memory'])
+    ap.add_argument('what', choices=['options', 'structures', 'converge', 'memory', 'roulette'])
     ap.add_argument('scene')
     ap.add_argument('--integrator', default='sppm', choices=['sppm', 'ppm'])
     ap.add_argument('--res', help='WIDTHxHEIGHT')
     ap.add_argument('--spp', type=int, default=8, help='iterations (options, memory)')
     ap.add_argument('--repeat', type=int, default=1, help='repetitions of the whole option list (options)')
     ap.add_argument('--photons', type=int, default=1 << 20, help='photon paths per iteration (memory)')
-    ap.add_argument('--ref', help='reference image (converge)')
+    ap.add_argument('--ref', help='reference image (converge, roulette)')
+    ap.add_argument('--seconds', type=float, help='time budget per render (roulette; else --spp iterations)')
     ap.add_argument('--iterations', default='4,8,16,32,64,128', help='iteration counts (converge)')
     ap.add_argument('--seed', type=int, default=1)
     ap.add_argument('--threads', type=int)
@@ -182,9 +226,10 @@ def main():
     ap.add_argument('--plot')
     ap.add_argument('--title', default='')
     a, a.extra = ap.parse_known_args()  # anything else: further `caustica render` options
-    if a.what == 'converge' and not a.ref:
-        sys.exit('converge needs --ref')
-    {'options': cmd_options, 'structures': lambda a: cmd_options(a, STRUCTURES), 'converge': cmd_converge, 'memory': cmd_memory}[a.what](a)
+    if a.what in ('converge', 'roulette') and not a.ref:
+        sys.exit(a.what + ' needs --ref')
+    {'options': cmd_options, 'structures': lambda a: cmd_options(a, STRUCTURES), 'converge': cmd_converge,
+     'memory': cmd_memory, 'roulette': cmd_roulette}[a.what](a)
 
 
 if __name__ == '__main__':

@@ -9,6 +9,18 @@
 
 namespace caustica::test {
 
+/// The six walls of the box x, y in [-1, 1], z in [0, 2], each made by rect(origin, u, v) (the
+/// rectangle origin + s u + t v, normal cross(u, v)).
+template <class Rect>
+void addBoxWalls(Rect&& rect) {
+    rect(Vec3f(-1, -1, 0), Vec3f(2, 0, 0), Vec3f(0, 0, 2));  // floor
+    rect(Vec3f(-1, 1, 0), Vec3f(0, 0, 2), Vec3f(2, 0, 0));   // ceiling
+    rect(Vec3f(-1, -1, 0), Vec3f(0, 2, 0), Vec3f(0, 0, 2));  // left
+    rect(Vec3f(1, -1, 0), Vec3f(0, 0, 2), Vec3f(0, 2, 0));   // right
+    rect(Vec3f(-1, -1, 2), Vec3f(2, 0, 0), Vec3f(0, 2, 0));  // back
+    rect(Vec3f(-1, -1, 0), Vec3f(0, 2, 0), Vec3f(2, 0, 0));  // front
+}
+
 /// A box x, y in [-1, 1], z in [0, 2]: area, point and environment light, glass and metal sphere.
 inline Scene makeLaneTestScene() {
     Scene scene;
@@ -23,12 +35,7 @@ inline Scene makeLaneTestScene() {
         RectMesh r(o, u, v);
         return addMesh(scene, r.positions, r.triangles);
     };
-    rect({-1, -1, 0}, {2, 0, 0}, {0, 0, 2});  // floor
-    rect({-1, 1, 0}, {0, 0, 2}, {2, 0, 0});   // ceiling
-    rect({-1, -1, 0}, {0, 2, 0}, {0, 0, 2});  // left
-    rect({1, -1, 0}, {0, 0, 2}, {0, 2, 0});   // right
-    rect({-1, -1, 2}, {2, 0, 0}, {0, 2, 0});  // back
-    rect({-1, -1, 0}, {0, 2, 0}, {2, 0, 0});  // front
+    addBoxWalls(rect);
     addAreaLight(scene, rect({-0.2f, 0.99f, 0.8f}, {0.4f, 0, 0}, {0, 0, 0.4f}), Spectrum(10, 9, 8));
     scene.shapes[addSphere(scene, {0.3f, -0.5f, 1.0f}, 0.4f)].bsdf = 1;
     scene.shapes[addSphere(scene, {-0.5f, -0.7f, 1.4f}, 0.3f)].bsdf = 2;

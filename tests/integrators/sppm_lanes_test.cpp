@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <string>
 #include <tuple>
 #include <type_traits>
 #include <vector>
@@ -44,26 +45,28 @@ Traced collect(Trace&& trace) {
 
 TEST(SppmLanes, PhotonGroupMakesThePhotonsOfPathsTracedOneByOne) {
     const Scene scene = makeLaneTestScene();
-    const PathSettings settings;
     for (AccelKind kind : {AccelKind::Embree, AccelKind::Bvh}) {
         const Accel accel(scene, kind);
         const SceneView& view = accel.sceneView();
         accel.visit([&](const auto& it) {
             // Ranges shorter than, equal to and longer than a packet, starting off a block.
-            for (size_t count : {size_t(0), size_t(1), size_t(15), size_t(16), size_t(17), size_t(300)}) {
+            for (size_t count : {size_t(0), size_t(1), size_t(15), size_t(16), size_t(17), size_t(300)})
+            for (PhotonRoulette roulette : {PhotonRoulette::Albedo, PhotonRoulette::Throughput}) {
+                const SppmPhotonRules rules{PathSettings{}, kMaxDepth, Float(0), roulette};
                 const size_t first = 1000;
                 const Traced alone = collect([&](uint64_t* rayBlocks, auto&& sink) {
                     for (size_t i = first; i < first + count; ++i)
-                        sppm_detail::photonPath(view, it, i, kIteration, kSeed, settings, kMaxDepth, Float(0),
-                                                rayBlocks, sink);
+                        sppm_detail::photonPath(view, it, i, kIteration, kSeed, rules, rayBlocks, sink);
                 });
                 const Traced grouped = collect([&](uint64_t* rayBlocks, auto&& sink) {
-                    sppm_detail::photonPathGroup(view, it, first, count, kIteration, kSeed, settings, kMaxDepth,
-                                                 Float(0), rayBlocks, sink);
+                    sppm_detail::photonPathGroup(view, it, first, count, kIteration, kSeed, rules, rayBlocks,
+                                                 sink);
                 });
-                EXPECT_EQ(grouped.rays, alone.rays) << accelKindName(kind) << " count " << count;
-                ASSERT_EQ(grouped.photons.size(), alone.photons.size()) << accelKindName(kind) << " count " << count;
-                EXPECT_TRUE(grouped.photons == alone.photons) << accelKindName(kind) << " count " << count;
+                SCOPED_TRACE(std::string(accelKindName(kind)) + " count " + std::to_string(count) + " roulette " +
+                             photonRouletteName(roulette));
+                EXPECT_EQ(grouped.rays, alone.rays);
+                ASSERT_EQ(grouped.photons.size(), alone.photons.size());
+                EXPECT_TRUE(grouped.photons == alone.photons);
                 if (count >= 300) {
                     EXPECT_GT(alone.photons.size(), count / 4);  // the scene stores photons
                     EXPECT_GT(alone.rays, count);  // and its paths go on past one hit

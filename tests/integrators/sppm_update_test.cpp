@@ -163,8 +163,12 @@ TEST(SppmSettingsTest, PhotonMapperChoicesAndTheirRefusals) {
     spec.params.push_back({"structure", IntegratorParam::Kind::String, "grid", "scene.xml:11"});
     spec.params.push_back({"direction", IntegratorParam::Kind::String, "gather", "scene.xml:12"});
     spec.params.push_back({"max_passes", IntegratorParam::Kind::Integer, "7", "scene.xml:13"});
+    spec.params.push_back({"photon_roulette", IntegratorParam::Kind::String, "throughput", "scene.xml:14"});
     IntegratorParams params(spec);
     const SppmSettings s = readSppmSettings(params);
+    EXPECT_EQ(s.photonRoulette, PhotonRoulette::Throughput);
+    IntegratorParams defaults(sppmSpec({}));
+    EXPECT_EQ(readSppmSettings(defaults).photonRoulette, PhotonRoulette::Albedo);
     EXPECT_EQ(s.radiusSchedule, RadiusSchedule::Global);
     EXPECT_EQ(s.structure, PhotonStructure::Grid);
     EXPECT_EQ(s.direction, PhotonDirection::Gather);
@@ -175,6 +179,10 @@ TEST(SppmSettingsTest, PhotonMapperChoicesAndTheirRefusals) {
     IntegratorSpec bad = sppmSpec({});
     bad.params.push_back({"structure", IntegratorParam::Kind::String, "octree", "scene.xml:9"});
     EXPECT_NE(refusal(bad).find("scene.xml:9"), std::string::npos) << refusal(bad);
+    IntegratorSpec badRoulette = sppmSpec({});
+    badRoulette.params.push_back({"photon_roulette", IntegratorParam::Kind::String, "always", "scene.xml:9"});
+    EXPECT_NE(refusal(badRoulette).find("scene.xml:9"), std::string::npos) << refusal(badRoulette);
+    EXPECT_NE(refusal(badRoulette).find("albedo"), std::string::npos) << refusal(badRoulette);
     IntegratorSpec ppm = sppmSpec({});
     ppm.type = "ppm";
     ppm.params.push_back({"hitpoints", IntegratorParam::Kind::Integer, "0", "scene.xml:9"});

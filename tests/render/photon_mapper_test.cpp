@@ -1,8 +1,9 @@
 // The photon mappers' choices through the render session: both directions (deposit, gather),
 // every lookup structure and the coherence orders give the same image to the bit (the sums are
-// fixed point); ppm and the global radius schedule converge to the reference the path tracer is
-// tested against (block t-test, common/block_agreement.h); sppm converges on cornell-water (the
-// caustics under the water) and glass-caustic (a focused caustic); ppm resumes to the uninterrupted image; max_passes ends a render.
+// fixed point); ppm, the global radius schedule and the throughput photon roulette converge to
+// the reference the path tracer is tested against (block t-test, common/block_agreement.h); sppm
+// converges on cornell-water (the caustics under the water) and glass-caustic (a focused
+// caustic); ppm resumes to the uninterrupted image; max_passes ends a render.
 #include <gtest/gtest.h>
 
 #include <tbb/task_arena.h>
@@ -107,6 +108,12 @@ TEST(PhotonMapperConvergence, PpmCornellBoxAgreesWithTheReference) {
 TEST(PhotonMapperConvergence, GlobalScheduleCornellBoxAgreesWithTheReference) {
     expectAgreement("cornell-box", "sppm", 48,
                     {{"photon_count", "16384"}, {"initial_radius", "0.03"}, {"radius_schedule", "global"}});
+}
+
+// Photon paths with the path tracer's roulette (from rr_depth on) instead of the default albedo rule.
+TEST(PhotonMapperConvergence, ThroughputRouletteCornellBoxAgreesWithTheReference) {
+    expectAgreement("cornell-box", "sppm", 48,
+                    {{"photon_count", "16384"}, {"initial_radius", "0.03"}, {"photon_roulette", "throughput"}});
 }
 
 // The headline scene: caustics on the floor and the walls under the water, seen through the

@@ -105,6 +105,12 @@ TEST(SppmResume, ResumedRenderEndsWithTheUninterruptedImage) {
     caustica::RenderRequest other = sppmRequest(5, 9, "1024", "0");
     Renderer different(scene, other);
     EXPECT_THROW(different.load(ckpt), Error);
+    // So is another photon roulette (another image: the same expectation, other paths).
+    caustica::RenderRequest otherRoulette = r;
+    otherRoulette.integratorParams.push_back({"photon_roulette", IntegratorParam::Kind::Text, "throughput",
+                                              "--sppm-roulette"});
+    Renderer differentRoulette(scene, otherRoulette);
+    EXPECT_THROW(differentRoulette.load(ckpt), Error);
     fs::remove_all(dir);
 }
 

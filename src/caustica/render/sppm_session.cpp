@@ -30,6 +30,7 @@ namespace {
 RenderIdentity sppmIdentity(const SppmSettings& s) {
     RenderIdentity id = {identityEntry("max_depth", std::to_string(s.path.maxDepth)),
                          identityEntry("rr_depth", std::to_string(s.path.rrDepth)),
+                         identityEntry("photon_roulette", photonRouletteName(s.photonRoulette)),
                          identityEntry("hide_emitters", s.path.hideEmitters ? "true" : "false"),
                          identityEntry("photon_count", std::to_string(s.photonCount)),
                          identityEntry("initial_radius", identityNumber(s.initialRadius)),

@@ -345,6 +345,9 @@ private:
     void dropFirstEyePass() { firstRadiance_ = Buffer<Spectrum>(); }
 
     uint32_t photonDepth() const { return sppmMaxDepth(settings_.path, uint32_t(2 * kSppmDepthCap)); }
+    SppmPhotonRules photonRules() const {
+        return {settings_.path, photonDepth(), settings_.roughnessThreshold, settings_.photonRoulette};
+    }
 
     void depositPass(uint64_t iteration, uint32_t count) {
         using Clock = std::chrono::steady_clock;
@@ -359,9 +362,8 @@ private:
             const SceneView& view = scene_.view();
             scene_.visit(Exec{}, [&](const auto& intersector) {
                 sppm_detail::depositPhotons(Exec{}, view, intersector, lookup, points_.data(), list_.data(),
-                                            settings_.path, photonDepth(), settings_.roughnessThreshold, fixed_,
-                                            seed_, iteration, photonFirst_, photonShare_, phi_.data(),
-                                            m_.data(), rayBlocks_.data());
+                                            photonRules(), fixed_, seed_, iteration, photonFirst_, photonShare_,
+                                            phi_.data(), m_.data(), rayBlocks_.data());
             });
             for (uint64_t r : rayBlocks_.toHost()) stats_.rays += r;
             stats_.photonSeconds += std::chrono::duration<double>(Clock::now() - t1).count();
@@ -400,9 +402,8 @@ private:
         store.counter = counter_.data();
         const SceneView& view = scene_.view();
         scene_.visit(Exec{}, [&](const auto& intersector) {
-            sppm_detail::storePhotons(Exec{}, view, intersector, settings_.path, photonDepth(),
-                                      settings_.roughnessThreshold, seed_, iteration, photonFirst_, paths, store,
-                                      rayBlocks_.data());
+            sppm_detail::storePhotons(Exec{}, view, intersector, photonRules(), seed_, iteration, photonFirst_, paths,
+                                      store, rayBlocks_.data());
         });
         for (uint64_t r : rayBlocks_.toHost()) stats_.rays += r;
         return counter_.toHost()[0];

@@ -216,11 +216,10 @@ void gatherPoints(Exec exec, size_t count, const uint32_t* list, const SppmVisib
 /// Photon path i of `iteration` (its own stream), its rays counted per block of 1024 paths.
 template <class Intersector, class Sink>
 CA_HD void photonPath(const SceneView& view, const Intersector& accel, size_t i, uint64_t iteration, uint64_t seed,
-                      const PathSettings& path, uint32_t maxDepth, Float specularBelow, uint64_t* rayBlocks,
-                      Sink&& sink) {
+                      const SppmPhotonRules& rules, uint64_t* rayBlocks, Sink&& sink) {
     IndependentSampler sampler = photonSampler(i, iteration, seed);
     uint32_t rays = 0;
-    sppmTracePhoton(view, accel, sampler, path, maxDepth, specularBelow, rays, sink);
+    sppmTracePhoton(view, accel, sampler, rules, rays, sink);
     sppmAtomicAdd(rayBlocks + i / 1024, rays);
 }
 
@@ -235,9 +234,7 @@ constexpr size_t photonPathsPerItem() {
 template <int L, class Sink>
 struct PhotonLanes {
     const SceneView& view;
-    const PathSettings& path;
-    uint32_t maxDepth;
-    Float specularBelow;
+    const SppmPhotonRules& rules;
     uint64_t iteration, seed;
     size_t first;
     Sink& sink;
@@ -247,12 +244,12 @@ struct PhotonLanes {
 
     CA_HD bool begin(int lane, size_t item) {
         samplers[lane] = photonSampler(first + item, iteration, seed);
-        return sppmStartPhoton(view, samplers[lane], paths[lane]) && sppmPhotonWantsRay(paths[lane], maxDepth);
+        return sppmStartPhoton(view, samplers[lane], paths[lane]) && sppmPhotonWantsRay(paths[lane], rules.maxDepth);
     }
     CA_HD const Ray& ray(int lane) const { return paths[lane].ray; }
     CA_HD bool hit(int lane, const Hit* hit, const Ray*&) {
         ++rays;
-        return hit && sppmPhotonHit(view, samplers[lane], path, maxDepth, specularBelow, paths[lane], *hit, sink);
+        return hit && sppmPhotonHit(view, samplers[lane], rules, paths[lane], *hit, sink);
     }
     CA_HD void shadow(int, bool) {}
     CA_HD void end(int) {}
@@ -268,15 +265,14 @@ struct PhotonLanes {
 /// photonPath for each. Rays are counted in block first / 1024.
 template <class Intersector, class Sink>
 CA_HD void photonPathGroup(const SceneView& view, const Intersector& accel, size_t first, size_t count,
-                           uint64_t iteration, uint64_t seed, const PathSettings& path, uint32_t maxDepth,
-                           Float specularBelow, uint64_t* rayBlocks, Sink&& sink) {
+                           uint64_t iteration, uint64_t seed, const SppmPhotonRules& rules, uint64_t* rayBlocks,
+                           Sink&& sink) {
     constexpr int L = laneCount<Intersector>();
     if constexpr (L == 1) {
         for (size_t i = first; i < first + count; ++i)
-            photonPath(view, accel, i, iteration, seed, path, maxDepth, specularBelow, rayBlocks, sink);
+            photonPath(view, accel, i, iteration, seed, rules, rayBlocks, sink);
     } else {
-        PhotonLanes<L, std::remove_reference_t<Sink>> lanes{view, path, maxDepth, specularBelow, iteration, seed,
-                                                            first, sink, {}, {}, 0};
+        PhotonLanes<L, std::remove_reference_t<Sink>> lanes{view, rules, iteration, seed, first, sink, {}, {}, 0};
         traceLanes(view, accel, count, lanes);
         sppmAtomicAdd(rayBlocks + first / 1024, lanes.rays);
     }
@@ -286,19 +282,19 @@ CA_HD void photonPathGroup(const SceneView& view, const Intersector& accel, size
 /// whose sphere covers its hit (`lookup` over the visible points' spheres; j indexes `list`).
 template <class Exec, class Intersector, class Lookup>
 void depositPhotons(Exec exec, const SceneView& view, const Intersector& accel, const Lookup& lookup,
-                    const SppmVisiblePoint* points, const uint32_t* list, PathSettings path, uint32_t maxDepth,
-                    Float specularBelow, SppmFixedPoint fixed, uint64_t seed, uint64_t iteration, uint64_t first,
+                    const SppmVisiblePoint* points, const uint32_t* list, SppmPhotonRules rules,
+                    SppmFixedPoint fixed, uint64_t seed, uint64_t iteration, uint64_t first,
                     uint64_t photons, uint64_t* phi, uint64_t* m, uint64_t* rayBlocks) {
     constexpr size_t G = photonPathsPerItem<Intersector>();
     launch(
         exec, "sppm.photons", size_t((photons + G - 1) / G),
         [=] CA_HD(size_t g) {
             const size_t from = size_t(first) + g * G, count = min(G, size_t(first + photons) - from);
-            photonPathGroup(view, accel, from, count, iteration, seed, path, maxDepth, specularBelow, rayBlocks,
+            photonPathGroup(view, accel, from, count, iteration, seed, rules, rayBlocks,
                             [&](const SurfaceInteraction& si, Vec3f wo, const Spectrum& flux, uint32_t k) {
                                 lookup.forEachSphereCovering(si.p, [&](uint32_t j) {
                                     const SppmVisiblePoint& vp = points[list[j]];
-                                    const Spectrum d = sppmContribution(view, vp, si.ng, wo, flux, k, maxDepth);
+                                    const Spectrum d = sppmContribution(view, vp, si.ng, wo, flux, k, rules.maxDepth);
                                     if (!d.isBlack()) sppmDeposit(fixed, d, phi + 3 * size_t(vp.stat), m + vp.stat);
                                 });
                             });
@@ -310,8 +306,8 @@ void depositPhotons(Exec exec, const SceneView& view, const Intersector& accel, 
 /// photons to `store` (sppm_photon_store.h: in batches, with their sort keys when store.keys is
 /// set; store.counter counts them all, so the caller sees an overflow and traces again).
 template <class Exec, class Intersector>
-void storePhotons(Exec exec, const SceneView& view, const Intersector& accel, PathSettings path, uint32_t maxDepth,
-                  Float specularBelow, uint64_t seed, uint64_t iteration, uint64_t first, uint64_t photons,
+void storePhotons(Exec exec, const SceneView& view, const Intersector& accel, SppmPhotonRules rules,
+                  uint64_t seed, uint64_t iteration, uint64_t first, uint64_t photons,
                   SppmPhotonStore store, uint64_t* rayBlocks) {
     constexpr size_t G = photonPathsPerItem<Intersector>();
     launch(
@@ -319,7 +315,7 @@ void storePhotons(Exec exec, const SceneView& view, const Intersector& accel, Pa
         [=] CA_HD(size_t g) {
             const size_t from = size_t(first) + g * G, count = min(G, size_t(first + photons) - from);
             SppmPhotonBatch batch(store);
-            photonPathGroup(view, accel, from, count, iteration, seed, path, maxDepth, specularBelow, rayBlocks,
+            photonPathGroup(view, accel, from, count, iteration, seed, rules, rayBlocks,
                             [&](const SurfaceInteraction& si, Vec3f wo, const Spectrum& flux, uint32_t k) {
                                 batch.add(SppmPhoton{si.p, wo, si.ng, flux, k});
                             });

@@ -12,6 +12,7 @@
 
 #include "caustica/integrators/sppm/sppm_emission.h"
 #include "caustica/integrators/sppm/sppm_kernel.h"
+#include "caustica/integrators/sppm/sppm_settings.h"
 #include "caustica/scene/bsdf.h"
 
 namespace caustica {
@@ -87,9 +88,32 @@ CA_HD_INLINE bool sppmStartPhoton(const SceneView& scene, Sampler& sampler, Sppm
     return true;
 }
 
-/// Whether the path traces its next segment (`maxDepth`: see sppmTracePhoton).
+/// What every photon path of a pass follows.
+struct SppmPhotonRules {
+    PathSettings path;        // rr_depth (roulette "throughput")
+    uint32_t maxDepth = 0;    // the longest whole path in segments, eye part included (every eye
+                              // part has at least one segment)
+    Float specularBelow = 0;  // roughness below which a lobe is specular (isSpecularBsdf)
+    PhotonRoulette roulette = PhotonRoulette::Albedo;
+};
+
+/// Whether the path traces its next segment.
 CA_HD_INLINE bool sppmPhotonWantsRay(const SppmPhotonPath& path, uint32_t maxDepth) {
     return path.k < maxDepth && path.k <= uint32_t(kSppmDepthCap);
+}
+
+/// The probability that a photon path goes on after its k-th hit, whose bounce took the largest
+/// channel of its throughput from `before` to `after` (both > 0); 1: no roulette.
+///   Albedo: at every bounce, after / before (at most 1), Jensen's photon-map roulette as
+///     pbrt-v4's SPPM has it: a photon that survives is divided by that ratio, so it keeps the
+///     power it left the light with and an absorbing bounce ends paths instead of dimming them.
+///     A path's expected deposits are the same; fewer rays carry them (one bounce off a wall of
+///     albedo 0.5 ends half the paths).
+///   Throughput: from rr_depth on, min(after, 0.95), the path tracer's rule (after is relative to
+///     the emitted flux).
+CA_HD_INLINE Float sppmPhotonSurvival(const SppmPhotonRules& rules, uint32_t k, Float before, Float after) {
+    if (rules.roulette == PhotonRoulette::Albedo) return min(after / before, Float(1));
+    return k >= uint32_t(rules.path.rrDepth) ? min(after, Float(0.95)) : Float(1);
 }
 
 /// What the photon does at `hit`, the closest hit of path.ray: sink(si, wo, flux, k) there unless
@@ -97,14 +121,13 @@ CA_HD_INLINE bool sppmPhotonWantsRay(const SppmPhotonPath& path, uint32_t maxDep
 /// roulette, which set path.ray to the next segment. Returns whether the path goes on (and traces
 /// path.ray). Three numbers per hit that samples.
 template <class Sampler, class Sink>
-CA_HD_INLINE bool sppmPhotonHit(const SceneView& scene, Sampler& sampler, const PathSettings& settings,
-                                uint32_t maxDepth, Float specularBelow, SppmPhotonPath& path, const Hit& hit,
-                                Sink&& sink) {
-    const uint32_t k = path.k;
+CA_HD_INLINE bool sppmPhotonHit(const SceneView& scene, Sampler& sampler, const SppmPhotonRules& rules,
+                                SppmPhotonPath& path, const Hit& hit, Sink&& sink) {
+    const uint32_t k = path.k, maxDepth = rules.maxDepth;
     const SurfaceInteraction si = computeInteraction(scene, path.ray, hit);
     const uint32_t bsdf = scene.shapes[si.shape].bsdf;
     const Vec3f wo = -normalize(path.ray.d);  // towards where the photon came from
-    if (k >= 2 && !isSpecularBsdf(scene.bsdfs, bsdf, specularBelow)) sink(si, wo, path.flux * path.throughput, k);
+    if (k >= 2 && !isSpecularBsdf(scene.bsdfs, bsdf, rules.specularBelow)) sink(si, wo, path.flux * path.throughput, k);
     if (k + 1 >= maxDepth) return false;  // no contribution can follow
     const Float uLobe = sampler.get1D();
     const Vec2f uBsdf = sampler.get2D();
@@ -114,11 +137,11 @@ CA_HD_INLINE bool sppmPhotonHit(const SceneView& scene, Sampler& sampler, const 
     const Float num = std::fabs(dot(wo, si.ns)) * std::fabs(dot(bs.wi, si.ng));
     const Float den = std::fabs(dot(wo, si.ng)) * std::fabs(dot(bs.wi, si.ns));
     if (!(den > 0)) return false;
+    const Float before = path.throughput.maxValue();
     path.throughput *= bs.weight * (bs.eta * bs.eta * num / den);
-    const Float tmax = path.throughput.maxValue();
-    if (!(tmax > 0) || !std::isfinite(tmax)) return false;
-    if (k >= uint32_t(settings.rrDepth)) {
-        const Float q = min(tmax, Float(0.95));
+    const Float after = path.throughput.maxValue();
+    if (!(after > 0) || !std::isfinite(after)) return false;
+    if (const Float q = sppmPhotonSurvival(rules, k, before, after); q < 1) {
         if (uRoulette >= q) return false;
         path.throughput *= 1 / q;
     }
@@ -127,25 +150,22 @@ CA_HD_INLINE bool sppmPhotonHit(const SceneView& scene, Sampler& sampler, const 
     return sppmPhotonWantsRay(path, maxDepth);
 }
 
-/// Traces one photon path (`maxDepth`: the longest whole path, eye part included; every eye part
-/// has at least one segment) and calls sink(si, wo, flux, k) at every hit k >= 2 segments from
-/// the light whose BSDF is not specular (isSpecularBsdf with `specularBelow`).
-/// Roulette on the photon's throughput relative to its start (the path tracer's rule without η:
-/// photons carry importance-mode weights). Refraction weights are converted from the BSDF's
-/// radiance mode (1/η²) to importance mode (× η²), and shading normals corrected (Veach 1997,
-/// sec. 5.3; pbrt's CorrectShadingNormal). The passes' packet form (sppm_passes.h,
-/// photonPathGroup) takes the same steps.
+/// Traces one photon path and calls sink(si, wo, flux, k) at every hit k >= 2 segments from the
+/// light whose BSDF is not specular (isSpecularBsdf with rules.specularBelow). Roulette by
+/// rules.roulette (sppmPhotonSurvival) on importance-mode weights: refraction weights are
+/// converted from the BSDF's radiance mode (1/η²) to importance mode (× η²), and shading normals
+/// corrected (Veach 1997, sec. 5.3; pbrt's CorrectShadingNormal). The passes' packet form
+/// (sppm_passes.h, photonPathGroup) takes the same steps.
 template <class Intersector, class Sampler, class Sink>
 CA_HD void sppmTracePhoton(const SceneView& scene, const Intersector& accel, Sampler& sampler,
-                           const PathSettings& settings, uint32_t maxDepth, Float specularBelow, uint32_t& rays,
-                           Sink&& sink) {
+                           const SppmPhotonRules& rules, uint32_t& rays, Sink&& sink) {
     SppmPhotonPath path;
     if (!sppmStartPhoton(scene, sampler, path)) return;
-    while (sppmPhotonWantsRay(path, maxDepth)) {
+    while (sppmPhotonWantsRay(path, rules.maxDepth)) {
         Hit hit;
         ++rays;
         if (!accel.intersect(path.ray, hit)) return;
-        if (!sppmPhotonHit(scene, sampler, settings, maxDepth, specularBelow, path, hit, sink)) return;
+        if (!sppmPhotonHit(scene, sampler, rules, path, hit, sink)) return;
     }
 }
 

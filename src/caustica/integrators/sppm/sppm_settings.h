@@ -6,7 +6,11 @@
 // |--------------------|-----------------------|-------------------------------------------------------|
 // | max_depth          |                       | longest path in segments, eye + photon part (-1:      |
 // |                    |                       | unbounded, capped at kSppmDepthCap per part)          |
-// | rr_depth           |                       | Russian roulette from this depth on (5)               |
+// | rr_depth           |                       | Russian roulette from this depth on (5): eye paths,   |
+// |                    |                       | and photon paths with photon_roulette = throughput    |
+// | photon_roulette    | --sppm-roulette       | albedo: at every bounce a photon goes on with the     |
+// |                    |                       | bounce's albedo and keeps its power; throughput: the  |
+// |                    |                       | path tracer's rule from rr_depth on (albedo)          |
 // | hide_emitters      |                       | emitters seen directly render black (false)           |
 // | photon_count       | --sppm-photons        | photon paths per iteration (2^17), 1 .. 2^30          |
 // | initial_radius     | --sppm-radius         | initial gather radius, world units, >= 0 (0: 3 pixel  |
@@ -57,10 +61,16 @@ enum class RadiusSchedule { Local, Global };
 enum class PhotonStructure { Hash, Grid, KdTree, MultiHash, Brute };
 enum class PhotonDirection { Deposit, Gather };
 enum class HitpointOrder { None, Morton, Kmeans };  // sppm_order.h
+/// How a photon path decides whether it goes on after a bounce (sppmPhotonSurvival, sppm_photon.h).
+enum class PhotonRoulette : uint8_t {
+    Albedo,      // every bounce: survival = the bounce's throughput ratio (<= 1), photons keep their power
+    Throughput,  // from rr_depth on: survival = min(throughput, 0.95), the path tracer's rule
+};
 
 struct SppmSettings {
     PhotonMapper mapper = PhotonMapper::Sppm;
     PathSettings path;                        // max_depth, rr_depth, hide_emitters (path_settings.h)
+    PhotonRoulette photonRoulette = PhotonRoulette::Albedo;
     uint64_t photonCount = kSppmDefaultPhotons;
     Float initialRadius = 0;                  // 0: sppmAutoRadius(scene)
     Float alpha = Float(2) / Float(3);
@@ -93,5 +103,6 @@ const char* radiusScheduleName(RadiusSchedule s);
 const char* photonStructureName(PhotonStructure s);
 const char* photonDirectionName(PhotonDirection d);
 const char* hitpointOrderName(HitpointOrder o);
+const char* photonRouletteName(PhotonRoulette r);
 
 }  // namespace caustica

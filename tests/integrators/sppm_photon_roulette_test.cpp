@@ -28,8 +28,8 @@ constexpr Float kAlbedo = 0.5f;
 constexpr uint32_t kMaxDepth = 12;
 constexpr uint64_t kIteration = 2, kSeed = 5;
 
-/// The lane tests' box x, y in [-1, 1], z in [0, 2] with its walls facing in, every wall diffuse with albedo
-/// kAlbedo, a point light of intensity 1 at its centre: Φ = 4π per photon.
+/// The lane tests' box x, y in [-1, 1], z in [0, 2] with its walls facing in, every wall diffuse
+/// with albedo kAlbedo, a point light of intensity 1 at its centre: Φ = 4π per photon.
 Scene makeGreyBox() {
     Scene scene;
     Bsdf grey;
@@ -47,14 +47,8 @@ Scene makeGreyBox() {
     return scene;
 }
 
-struct PathTotals {
-    double flux = 0;    // Σ over the path's stored photons of their red flux / Φ
-    double rays = 0;
-    uint64_t photons = 0;
-    double worstPowerError = 0;  // largest |flux / Φ - 1| of one stored photon
-};
-
-/// Mean and standard error of each photon path's totals over `paths` paths.
+/// Over `paths` photon paths: mean and standard error of the red flux a path stores (over Φ) and
+/// of the rays it traces, photons stored per path, and the largest |flux / Φ - 1| of one photon.
 struct Moments {
     double fluxMean = 0, fluxError = 0, raysMean = 0, raysError = 0, photonsPerPath = 0, worstPowerError = 0;
 };

@@ -106,18 +106,24 @@ def cmd_options(a, options=OPTIONS):
     write_csv(a.csv, rows)
 
 
-def cmd_converge(a):
+def compare(a, img):
+    """`caustica compare --json` of img against --ref (with REF.var.exr when it is beside REF, so the
+    reference's noise is removed) and the key of the relMSE to use."""
     stem, ext = os.path.splitext(a.ref)
     var = stem + '.var' + ext
     var = var if os.path.exists(var) else None
+    m = json.loads(run([a.caustica, 'compare', img, a.ref, '--json'] + (['--ref-var', var] if var else [])))
+    return m, 'relmse_ref_noise_removed' if var else 'relmse'
+
+
+def cmd_converge(a):
     iterations = [int(x) for x in a.iterations.split(',')]
-    rows = []
+    rows, key = [], 'relmse'
     with tempfile.TemporaryDirectory() as tmp:
         for it in iterations:
             img, st = render(a, tmp, ['--spp', str(it)])
-            cmp = [a.caustica, 'compare', img, a.ref, '--json'] + (['--ref-var', var] if var else [])
-            m = json.loads(run(cmp))
-            err = m['relmse_ref_noise_removed'] if var else m['relmse']
+            m, key = compare(a, img)
+            err = m[key]
             rows.append({'iterations': it, 'seconds': st['seconds'], 'relmse': m['relmse'],
                          'relmse_ref_noise_removed': m.get('relmse_ref_noise_removed', ''),
                          'mean_ratio': m.get('mean_ratio', ''), 'mean_radius': st.get('sppm_mean_radius', '')})
@@ -125,7 +131,6 @@ def cmd_converge(a):
                                                                            float(m.get('mean_ratio', 'nan'))),
                   flush=True)
     write_csv(a.csv, rows)
-    key = 'relmse_ref_noise_removed' if var else 'relmse'
     xs = [math.log(r['iterations']) for r in rows if float(r[key]) > 0]
     ys = [math.log(float(r[key])) for r in rows if float(r[key]) > 0]
     slope = float('nan')
@@ -158,13 +163,9 @@ def cmd_converge(a):
     print('wrote', plot)
 
 
-def compare(a, img):
-    """relMSE of img against --ref (the reference's noise removed when REF.var.exr is beside it)."""
-    stem, ext = os.path.splitext(a.ref)
-    var = stem + '.var' + ext
-    cmp = [a.caustica, 'compare', img, a.ref, '--json'] + (['--ref-var', var] if os.path.exists(var) else [])
-    m = json.loads(run(cmp))
-    return float(m['relmse_ref_noise_removed'] if os.path.exists(var) else m['relmse'])
+def relmse(a, img):
+    m, key = compare(a, img)
+    return float(m[key])
 
 
 def cmd_roulette(a):
@@ -179,7 +180,7 @@ def cmd_roulette(a):
                 img, st = render(a, tmp, budget + ['--sppm-roulette', rule])
                 paths = float(st['sppm_photon_paths'])
                 row = {'rule': rule, 'repeat': rep, 'seed': a.seed, 'seconds': st['seconds'],
-                       'iterations': st['sppm_iterations'], 'relmse': compare(a, img),
+                       'iterations': st['sppm_iterations'], 'relmse': relmse(a, img),
                        'photon_paths_per_second': st['sppm_photon_paths_per_second'],
                        'rays_per_photon_path_eye_included': float(st['rays']) / paths if paths else '',
                        'stored_photons_last_iteration': st.get('sppm_stored_photons', ''),

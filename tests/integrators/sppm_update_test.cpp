@@ -169,6 +169,8 @@ TEST(SppmSettingsTest, PhotonMapperChoicesAndTheirRefusals) {
     EXPECT_EQ(s.photonRoulette, PhotonRoulette::Throughput);
     IntegratorParams defaults(sppmSpec({}));
     EXPECT_EQ(readSppmSettings(defaults).photonRoulette, PhotonRoulette::Albedo);
+    IntegratorParams defaultDirection(sppmSpec({}));
+    EXPECT_EQ(readSppmSettings(defaultDirection).direction, PhotonDirection::Auto);
     EXPECT_EQ(s.radiusSchedule, RadiusSchedule::Global);
     EXPECT_EQ(s.structure, PhotonStructure::Grid);
     EXPECT_EQ(s.direction, PhotonDirection::Gather);
@@ -183,6 +185,10 @@ TEST(SppmSettingsTest, PhotonMapperChoicesAndTheirRefusals) {
     badRoulette.params.push_back({"photon_roulette", IntegratorParam::Kind::String, "always", "scene.xml:9"});
     EXPECT_NE(refusal(badRoulette).find("scene.xml:9"), std::string::npos) << refusal(badRoulette);
     EXPECT_NE(refusal(badRoulette).find("albedo"), std::string::npos) << refusal(badRoulette);
+    IntegratorSpec badDirection = sppmSpec({});
+    badDirection.params.push_back({"direction", IntegratorParam::Kind::String, "both", "scene.xml:9"});
+    EXPECT_NE(refusal(badDirection).find("scene.xml:9"), std::string::npos) << refusal(badDirection);
+    EXPECT_NE(refusal(badDirection).find("auto"), std::string::npos) << refusal(badDirection);
     IntegratorSpec ppm = sppmSpec({});
     ppm.type = "ppm";
     ppm.params.push_back({"hitpoints", IntegratorParam::Kind::Integer, "0", "scene.xml:9"});

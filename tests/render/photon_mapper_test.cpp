@@ -93,6 +93,45 @@ TEST(PhotonMapper, DirectionsStructuresAndOrdersGiveTheSameImage) {
     }
 }
 
+/// The session's summary (printSummary) as text.
+std::string summaryOf(const Renderer& renderer) {
+    std::FILE* f = std::tmpfile();
+    renderer.session().printSummary(f);
+    std::rewind(f);
+    std::string text;
+    for (int c; (c = std::fgetc(f)) != EOF;) text += char(c);
+    std::fclose(f);
+    return text;
+}
+
+// Direction "auto" (the default): with few photons stored per visible point (32 photon paths
+// for 576 pixels) it times two passes in each direction and keeps the faster; with many (4096)
+// it gathers without timing. Either way the image is the same bits as both fixed directions'.
+TEST(PhotonMapper, AutoDirectionChoosesAndKeepsTheImage) {
+    const Scene scene = loadScene(sourcePath("scenes/cornell-water/scene.xml"), {{"width", "24"}, {"height", "24"}});
+    for (const char* photons : {"32", "4096"}) {
+        SCOPED_TRACE(photons);
+        const bool timed = std::string(photons) == "32";
+        Renderer renderer(scene, request("sppm", 6, 3, {{"photon_count", photons}}));
+        while (!renderer.finished()) renderer.step();
+        const Image image = renderer.develop();
+        EXPECT_TRUE(image.rgb == render(scene, request("sppm", 6, 3, {{"photon_count", photons}, {"direction", "gather"}})).rgb);
+        EXPECT_TRUE(image.rgb == render(scene, request("sppm", 6, 3, {{"photon_count", photons}, {"direction", "deposit"}})).rgb);
+        std::string chosen;
+        for (const auto& [key, value] : renderer.session().statsJson())
+            if (key == "sppm_direction") chosen = value;
+        const std::string summary = summaryOf(renderer);
+        if (timed) {
+            EXPECT_TRUE(chosen == "\"gather\"" || chosen == "\"deposit\"") << chosen;
+            EXPECT_NE(summary.find("passes timed: gather"), std::string::npos) << summary;
+        } else {
+            EXPECT_EQ(chosen, "\"gather\"");
+            EXPECT_NE(summary.find("direction gather (auto:"), std::string::npos) << summary;
+            EXPECT_EQ(summary.find("passes timed"), std::string::npos) << summary;
+        }
+    }
+}
+
 TEST(PhotonMapper, GatherIsTheSameOnOneAndTwoThreads) {
     const Scene scene = loadScene(sourcePath("scenes/cornell-water/scene.xml"), {{"width", "24"}, {"height", "24"}});
     const caustica::RenderRequest r = request("sppm", 2, 5, {{"photon_count", "4096"}, {"direction", "gather"}});

@@ -121,8 +121,9 @@ public:
                           "%llu visible points in the last iteration\n",
                      name, (unsigned long long)s.iterations, (unsigned long long)s.photonPaths,
                      double(s.photonPaths) / photonTime, (unsigned long long)s.visiblePoints);
-        if (driver_->settings().direction == PhotonDirection::Gather)
-            std::fprintf(out, "%-11s %llu photons stored in the last iteration, %llu passes traced again after an "
+        std::fprintf(out, "%-11s direction %s\n", name, driver_->direction().describe().c_str());
+        if (s.storedPhotons > 0)
+            std::fprintf(out, "%-11s %llu photons stored in the last gather pass, %llu passes traced again after an "
                               "overflow\n",
                          name, (unsigned long long)s.storedPhotons, (unsigned long long)s.photonRetraces);
         std::fprintf(out, "%-11s radius mean %.4g (initial %.4g); memory %s (peak %s)\n", name, s.meanRadius,
@@ -142,6 +143,8 @@ public:
                 {"sppm_device_bytes", std::to_string(s.deviceBytes)},
                 {"sppm_peak_device_bytes", std::to_string(s.peakBytes)},
                 {"sppm_stored_photons", std::to_string(s.storedPhotons)},
+                // gather or deposit (what auto chose; "auto" while it is still timing both)
+                {"sppm_direction", std::string("\"") + photonDirectionName(driver_->direction().current()) + "\""},
                 {"sppm_gather_seconds", identityNumber(s.gatherSeconds)},
                 {"sppm_eye_seconds", identityNumber(s.eyeSeconds)},
                 {"sppm_grid_seconds", identityNumber(s.gridSeconds)},

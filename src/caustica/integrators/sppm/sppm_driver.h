@@ -7,7 +7,8 @@
 //                 spheres (radii = their current radii, rebuilt every iteration), each photon adds
 //                 into the spheres covering it with integer atomics; direction "gather": photons
 //                 stored, optionally sorted by cell (Morton order), a structure over them, each
-//                 visible point sums those within its radius;
+//                 visible point sums those within its radius; direction "auto": one of the two,
+//                 chosen on the first passes (sppm_direction.h);
 //   update        per entry (radius_schedule local or global).
 // Sums are 64-bit fixed point (sppm_kernel.h), so both directions, every structure and every
 // thread count give the same bits. The formulas are in sppm_kernel.h and sppm_photon.h.
@@ -29,6 +30,7 @@
 #include "caustica/film/image.h"
 #include "caustica/integrators/megakernel_pass.h"
 #include "caustica/integrators/sppm/sppm_checkpoint.h"
+#include "caustica/integrators/sppm/sppm_direction.h"
 #include "caustica/integrators/sppm/sppm_kernel.h"
 #include "caustica/integrators/sppm/sppm_order.h"
 #include "caustica/integrators/sppm/sppm_passes.h"
@@ -113,12 +115,15 @@ public:
     virtual SppmLookupInputs lookupInputs() const = 0;
     const SppmStats& stats() const { return stats_; }
     const SppmSettings& settings() const { return settings_; }
+    /// The photon pass's direction: settings().direction, or what "auto" chose (and why).
+    const SppmDirectionChooser& direction() const { return direction_; }
     int width() const { return width_; }
     int height() const { return height_; }
     uint32_t entriesPerPixel() const { return settings_.mapper == PhotonMapper::Ppm ? settings_.hitpoints : 1; }
 
 protected:
     SppmSettings settings_;
+    SppmDirectionChooser direction_;
     SppmStats stats_;
     int width_ = 0, height_ = 0;
     uint64_t photonFirst_ = 0, photonShare_ = 0;  // the photons this driver traces per iteration
@@ -153,6 +158,7 @@ public:
     SppmDriver(const Scene& scene, const Accel& accel, const SppmSettings& settings, uint64_t seed)
         : scene_(scene, accel, Exec::device()), seed_(seed) {
         settings_ = settings;
+        direction_ = SppmDirectionChooser(settings.direction);
         width_ = scene.film.width;
         height_ = scene.film.height;
         const Float flux = maxEmissionFlux(scene.view());
@@ -210,10 +216,17 @@ public:
         if (count > 0) {
             sppm_detail::gatherPoints(Exec{}, count, list_.data(), points_.data(), stats_buf_.data(),
                                       positions_.data(), radii_.data());
-            if (settings_.direction == PhotonDirection::Deposit)
+            if (direction_.needsPilot()) pilotDirection(iteration, count);
+            lastDirection_ = direction_.next();
+            const auto t2 = Clock::now();
+            if (lastDirection_ == PhotonDirection::Deposit)
                 depositPass(iteration, count);
             else
                 gatherPass(iteration, count);
+            direction_.passed(std::chrono::duration<double>(Clock::now() - t2).count());
+            // Auto chose deposit after a gather pass: the photon store is no longer needed.
+            if (direction_.decided() && direction_.next() == PhotonDirection::Deposit && store_.size() > 0)
+                releaseStore();
         }
         stats_.photonPaths += photonShare_;
     }
@@ -268,7 +281,7 @@ public:
         in.visibleRadii = radii_.toHost();
         in.visiblePoints.resize(visibleCount_);
         in.visibleRadii.resize(visibleCount_);
-        if (settings_.direction == PhotonDirection::Gather && photonPositions_.size() > 0) {
+        if (lastDirection_ == PhotonDirection::Gather && photonPositions_.size() > 0) {
             in.photons = photonPositions_.toHost();
             in.photons.resize(size_t(stats_.storedPhotons));
         }
@@ -375,7 +388,8 @@ private:
     /// With sort_photons the pass also writes each photon's Morton key and slot for the sort. The
     /// first store is sized by a pilot (pilotStoreSize), so that the first pass rarely overflows.
     uint64_t storePhotons(uint64_t iteration) {
-        if (store_.size() == 0) resizeStore(storePresize_ > 0 ? size_t(storePresize_) : pilotStoreSize(iteration));
+        if (store_.size() == 0)
+            resizeStore(storePresize_ > 0 ? size_t(storePresize_) : storeSizeFor(pilotPhotonsPerPath(iteration)));
         for (;;) {
             SppmPhotonStore store;
             store.photons = store_.data();
@@ -409,18 +423,32 @@ private:
         return counter_.toHost()[0];
     }
 
-    /// The first store's size: the first 1/64 of the share's photon paths (at least 4096) traced
-    /// into a store of capacity 0, which counts their photons and keeps none, extrapolated to the
-    /// share, plus a quarter. The pilot's paths are the iteration's own, so it changes no photon;
-    /// it costs a 64th of a pass where a store sized by a fixed guess (2 photons a path; cornell-
-    /// water stores 2.5) had the whole first pass traced again, and it does not reserve 2 photons
-    /// a path for a scene that stores 0.05 (glass-caustic).
-    size_t pilotStoreSize(uint64_t iteration) {
+    /// The pilot: the first 1/64 of the share's photon paths (at least 4096) traced into a store
+    /// of capacity 0, which counts their photons and keeps none; returns photons per path. The
+    /// pilot's paths are the iteration's own, so it changes no photon. It sizes the first store
+    /// (storeSizeFor): a 64th of a pass where a store sized by a fixed guess (2 photons a path;
+    /// cornell-water stores 2.5) had the whole first pass traced again, without reserving 2
+    /// photons a path for a scene that stores 0.05 (glass-caustic); and it tells direction "auto"
+    /// how many photons a pass stores.
+    double pilotPhotonsPerPath(uint64_t iteration) {
         const uint64_t pilot = std::min<uint64_t>(photonShare_, std::max<uint64_t>(photonShare_ / 64, 4096));
-        if (pilot == 0) return 1024;
-        const uint64_t stored = tracePhotonPaths(iteration, pilot, SppmPhotonStore{});
-        const double perPath = double(stored) / double(pilot);
+        if (pilot == 0) return 0;
+        return double(tracePhotonPaths(iteration, pilot, SppmPhotonStore{})) / double(pilot);
+    }
+    /// The store for the share at `perPath` photons a path, plus a quarter.
+    size_t storeSizeFor(double perPath) const {
         return size_t(std::max(1024.0, std::ceil(1.25 * perPath * double(photonShare_))));
+    }
+
+    /// Direction "auto" before its first pass: the pilot's photons against the `count` visible
+    /// points (SppmDirectionChooser); a gather pass next finds its store sized by the same pilot.
+    void pilotDirection(uint64_t iteration, uint32_t count) {
+        const auto t0 = std::chrono::steady_clock::now();
+        const double perPath = pilotPhotonsPerPath(iteration);
+        direction_.pilot(perPath * double(photonShare_), count);
+        if (direction_.next() == PhotonDirection::Gather && store_.size() == 0)
+            resizeStore(storePresize_ > 0 ? size_t(storePresize_) : storeSizeFor(perPath));
+        stats_.photonSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     }
 
     /// The store and the arrays indexed like it (sort keys and order, sorted copy, positions).
@@ -431,6 +459,13 @@ private:
         photonPositions_ = Buffer<Vec3f>(d, n);
         photonKeys_ = Buffer<uint32_t>(d, n);
         photonOrder_ = Buffer<uint32_t>(d, n);
+    }
+    void releaseStore() {
+        store_ = Buffer<SppmPhoton>();
+        sorted_ = Buffer<SppmPhoton>();
+        photonPositions_ = Buffer<Vec3f>();
+        photonKeys_ = Buffer<uint32_t>();
+        photonOrder_ = Buffer<uint32_t>();
     }
 
     void gatherPass(uint64_t iteration, uint32_t count) {
@@ -485,6 +520,7 @@ private:
     Buffer<uint32_t> home_;
     Buffer<Vec3f> centres_;
     uint32_t visibleCount_ = 0;
+    PhotonDirection lastDirection_ = PhotonDirection::Gather;  // of the last photon pass
     bool hitpointsReady_ = false;
     bool addLd_ = true;
     size_t bufferBytes_ = 0;

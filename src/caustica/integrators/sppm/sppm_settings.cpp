@@ -40,9 +40,11 @@ SppmSettings readSppmSettings(IntegratorParams& p, PhotonMapper mapper) {
                   : structure == "multihash" ? PhotonStructure::MultiHash
                   : structure == "brute"     ? PhotonStructure::Brute
                                              : PhotonStructure::Grid;
-    // Default: gather, the faster on cornell-water (docs/SPPM.md, "Measured").
-    s.direction = p.getString("direction", "gather", {"deposit", "gather"}) == "deposit" ? PhotonDirection::Deposit
-                                                                                          : PhotonDirection::Gather;
+    // Default: auto, gather or deposit by the scene (sppm_direction.h; docs/SPPM.md, "Direction").
+    const std::string direction = p.getString("direction", "auto", {"auto", "deposit", "gather"});
+    s.direction = direction == "deposit"  ? PhotonDirection::Deposit
+                  : direction == "gather" ? PhotonDirection::Gather
+                                          : PhotonDirection::Auto;
     const std::string order = p.getString("hitpoint_order", "morton", {"morton", "kmeans", "none"});
     s.hitpointOrder = order == "kmeans" ? HitpointOrder::Kmeans : order == "none" ? HitpointOrder::None : HitpointOrder::Morton;
     s.sortPhotons = p.getBool("sort_photons", true);
@@ -70,7 +72,9 @@ std::vector<IntegratorOption> commonOptions() {
         {"--sppm-passes", "max_passes", "photon mapping: iterations when --spp is not given (default: the sample count)"},
         {"--sppm-structure", "structure", "photon mapping: lookup structure, hash, grid, kdtree, multihash or brute (default grid)"},
         {"--sppm-direction", "direction",
-         "photon mapping: deposit (photons into visible points' spheres) or gather (stored photons) (default gather)"},
+         "photon mapping: deposit (photons into visible points' spheres), gather (stored photons) or auto (the "
+         "faster on the scene: gather when a pilot finds many photons per visible point, else both timed once) "
+         "(default auto)"},
         {"--sppm-order", "hitpoint_order",
          "photon mapping: order of the visible points, morton, kmeans (clusters, seed 003) or none (default morton)"},
         {"--sppm-sort-photons", "sort_photons",
@@ -111,7 +115,9 @@ const char* photonStructureName(PhotonStructure s) {
            : s == PhotonStructure::Brute     ? "brute"
                                              : "hash";
 }
-const char* photonDirectionName(PhotonDirection d) { return d == PhotonDirection::Gather ? "gather" : "deposit"; }
+const char* photonDirectionName(PhotonDirection d) {
+    return d == PhotonDirection::Gather ? "gather" : d == PhotonDirection::Deposit ? "deposit" : "auto";
+}
 const char* photonRouletteName(PhotonRoulette r) {
     return r == PhotonRoulette::Throughput ? "throughput" : "albedo";
 }

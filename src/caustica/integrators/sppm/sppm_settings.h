@@ -25,7 +25,8 @@
 // | structure          | --sppm-structure      | hash, grid, kdtree, multihash or brute (grid)         |
 // | direction          | --sppm-direction      | deposit: photons add into the visible points' spheres |
 // |                    |                       | (no photon storage); gather: photons are stored and   |
-// |                    |                       | each visible point gathers them (gather)              |
+// |                    |                       | each visible point gathers them; auto: the faster one |
+// |                    |                       | on this scene (sppm_direction.h) (auto)               |
 // | hitpoint_order     | --sppm-order          | visible points in morton order, kmeans clusters (seed |
 // |                    |                       | 003) or none (morton)                                 |
 // | sort_photons       | --sppm-sort-photons   | gather: photons copied into cell order (true)         |
@@ -59,7 +60,7 @@ inline constexpr uint32_t kPpmMaxHitpoints = 256;
 enum class PhotonMapper { Sppm, Ppm };
 enum class RadiusSchedule { Local, Global };
 enum class PhotonStructure { Hash, Grid, KdTree, MultiHash, Brute };
-enum class PhotonDirection { Deposit, Gather };
+enum class PhotonDirection { Deposit, Gather, Auto };  // Auto: sppm_direction.h
 enum class HitpointOrder { None, Morton, Kmeans };  // sppm_order.h
 /// How a photon path decides whether it goes on after a bounce (sppmPhotonSurvival, sppm_photon.h).
 enum class PhotonRoulette : uint8_t {
@@ -78,7 +79,7 @@ struct SppmSettings {
     Float roughnessThreshold = 0;
     uint64_t maxPasses = 0;                   // 0: the sampler's sample_count
     PhotonStructure structure = PhotonStructure::Grid;
-    PhotonDirection direction = PhotonDirection::Gather;
+    PhotonDirection direction = PhotonDirection::Auto;
     HitpointOrder hitpointOrder = HitpointOrder::Morton;
     bool sortPhotons = true;
     uint32_t hitpoints = 1;                   // ppm only

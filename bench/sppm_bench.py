@@ -42,17 +42,23 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, '..'))
 
 OPTIONS = [  # (name, extra arguments): every choice named, whatever the defaults are
-    ('deposit hash', ['--sppm-direction', 'deposit']),
-    ('deposit hash, no Morton order', ['--sppm-direction', 'deposit', '--sppm-order', 'none']),
+    ('deposit hash', ['--sppm-direction', 'deposit', '--sppm-structure', 'hash']),
+    ('deposit hash, no Morton order', ['--sppm-direction', 'deposit', '--sppm-structure', 'hash',
+                                       '--sppm-order', 'none']),
     ('deposit grid', ['--sppm-direction', 'deposit', '--sppm-structure', 'grid']),
-    ('gather hash', ['--sppm-direction', 'gather']),
-    ('gather hash, photons unsorted', ['--sppm-direction', 'gather', '--sppm-sort-photons', 'false']),
-    ('gather hash, no Morton order', ['--sppm-direction', 'gather', '--sppm-order', 'none']),
-    ('gather hash, unsorted, no Morton', ['--sppm-direction', 'gather', '--sppm-sort-photons', 'false',
-                                          '--sppm-order', 'none']),
-    ('gather hash, k-means clusters', ['--sppm-direction', 'gather', '--sppm-order', 'kmeans']),
-    ('deposit hash, k-means clusters', ['--sppm-direction', 'deposit', '--sppm-order', 'kmeans']),
+    ('gather hash', ['--sppm-direction', 'gather', '--sppm-structure', 'hash']),
+    ('gather hash, photons unsorted', ['--sppm-direction', 'gather', '--sppm-structure', 'hash',
+                                       '--sppm-sort-photons', 'false']),
+    ('gather hash, no Morton order', ['--sppm-direction', 'gather', '--sppm-structure', 'hash',
+                                      '--sppm-order', 'none']),
+    ('gather hash, unsorted, no Morton', ['--sppm-direction', 'gather', '--sppm-structure', 'hash',
+                                          '--sppm-sort-photons', 'false', '--sppm-order', 'none']),
+    ('gather hash, k-means clusters', ['--sppm-direction', 'gather', '--sppm-structure', 'hash',
+                                       '--sppm-order', 'kmeans']),
+    ('deposit hash, k-means clusters', ['--sppm-direction', 'deposit', '--sppm-structure', 'hash',
+                                        '--sppm-order', 'kmeans']),
     ('gather grid', ['--sppm-direction', 'gather', '--sppm-structure', 'grid']),
+    ('auto grid (the defaults)', ['--sppm-direction', 'auto', '--sppm-structure', 'grid']),
 ]
 
 STRUCTURES = [('%s %s' % (d, s), ['--sppm-direction', d, '--sppm-structure', s])

@@ -35,6 +35,7 @@
 #include "caustica/integrators/sppm/sppm_order.h"
 #include "caustica/integrators/sppm/sppm_passes.h"
 #include "caustica/integrators/sppm/sppm_settings.h"
+#include "caustica/parallel/backend.h"
 #include "caustica/parallel/buffer.h"
 #include "caustica/parallel/launch.h"
 #include "caustica/parallel/primitives.h"
@@ -223,6 +224,8 @@ public:
                 depositPass(iteration, count);
             else
                 gatherPass(iteration, count);
+            // GPU launches are asynchronous: a timed pass is timed to its last kernel's end.
+            if (!direction_.decided()) detail::synchronizeOn(Exec::device());
             direction_.passed(std::chrono::duration<double>(Clock::now() - t2).count());
             // Auto chose deposit after a gather pass: the photon store is no longer needed.
             if (direction_.decided() && direction_.next() == PhotonDirection::Deposit && store_.size() > 0)
@@ -386,7 +389,7 @@ private:
     /// Traces the photon pass into the store, again with a larger store when it overflowed (the
     /// photon streams are keyed by (photon, iteration), so the second pass stores the same photons).
     /// With sort_photons the pass also writes each photon's Morton key and slot for the sort. The
-    /// first store is sized by a pilot (pilotStoreSize), so that the first pass rarely overflows.
+    /// first store is sized by a pilot (pilotPhotonsPerPath), so that the first pass rarely overflows.
     uint64_t storePhotons(uint64_t iteration) {
         if (store_.size() == 0)
             resizeStore(storePresize_ > 0 ? size_t(storePresize_) : storeSizeFor(pilotPhotonsPerPath(iteration)));

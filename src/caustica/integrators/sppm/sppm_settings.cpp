@@ -73,7 +73,7 @@ std::vector<IntegratorOption> commonOptions() {
         {"--sppm-structure", "structure", "photon mapping: lookup structure, hash, grid, kdtree, multihash or brute (default grid)"},
         {"--sppm-direction", "direction",
          "photon mapping: deposit (photons into visible points' spheres), gather (stored photons) or auto (the "
-         "faster on the scene: gather when a pilot finds many photons per visible point, else both timed once) "
+         "faster on the scene: gather when a pilot finds many photons per visible point, else two passes of each timed) "
          "(default auto)"},
         {"--sppm-order", "hitpoint_order",
          "photon mapping: order of the visible points, morton, kmeans (clusters, seed 003) or none (default morton)"},

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -20,7 +21,7 @@ uint32_t bitsOf(Float f) {
     return u;
 }
 
-/// Triangles, spheres (Embree's user geometry) and cylinders.
+/// Triangles, spheres and cylinders (Embree's user geometry: more than directPrimitives).
 Scene mixedScene(uint64_t seed) {
     Scene scene = test::makeRandomScene(test::sceneOf(1500, 200, seed));
     test::TestRng rng(seed + 100);
@@ -156,6 +157,51 @@ TEST(IntersectorPacket, EmbreeSpheresAloneInPackets) {
     const Scene scene = test::makeRandomScene(test::sceneOf(0, 300, 13));
     const EmbreeScene embree(scene);
     expectPacketsEqualSingleRays(embree.intersector(), packetRays(scene, embree.intersector(), 2000, 14));
+}
+
+/// One sphere or one cylinder is tested directly before each Embree query
+/// (EmbreeSceneOptions::directPrimitives) instead of being Embree's user geometry: the same
+/// answers to the bit, single rays and packets of every width, coherent or not. The primitive is
+/// large, so that many rays hit it, and beside triangles or alone.
+TEST(IntersectorPacket, DirectSphereOrCylinderAnswersAsUserGeometry) {
+    Scene withSphere = test::makeRandomScene(test::sceneOf(1500, 0, 21));
+    test::addSphere(withSphere, {0.5f, -0.3f, 0.2f}, 2.5f);
+    Scene withCylinder = test::makeRandomScene(test::sceneOf(1500, 0, 22));
+    test::addCylinder(withCylinder, {-1, -0.5f, 0.3f}, normalize(Vec3f(0.3f, 1, -0.2f)), 2, 3);
+    Scene sphereAlone;
+    test::addSphere(sphereAlone, {1, 2, 3}, 1.5f);
+    const std::pair<const char*, const Scene*> scenes[] = {{"sphere and triangles", &withSphere},
+                                                            {"cylinder and triangles", &withCylinder},
+                                                            {"sphere alone", &sphereAlone}};
+    for (const auto& [name, scene] : scenes) {
+        SCOPED_TRACE(name);
+        const EmbreeScene direct(*scene);
+        EmbreeSceneOptions userOptions;
+        userOptions.directPrimitives = 0;
+        const EmbreeScene user(*scene, userOptions);
+        ASSERT_TRUE(direct.intersector().hasDirectPrimitives());
+        ASSERT_FALSE(user.intersector().hasDirectPrimitives());
+        const std::vector<Ray> rays = packetRays(*scene, user.intersector(), 3000, 25);
+        size_t onPrimitive = 0;
+        for (const Ray& ray : rays) {
+            Hit got, ref;
+            const bool gotFound = direct.intersector().intersect(ray, got);
+            ASSERT_EQ(gotFound, user.intersector().intersect(ray, ref));
+            EXPECT_EQ(bitsOf(got.t), bitsOf(ref.t));
+            EXPECT_EQ(got.primId, ref.primId);
+            EXPECT_EQ(bitsOf(got.b1), bitsOf(ref.b1));
+            EXPECT_EQ(bitsOf(got.b2), bitsOf(ref.b2));
+            EXPECT_EQ(direct.intersector().occluded(ray), user.intersector().occluded(ray));
+            onPrimitive += gotFound && got.primId >= scene->triangles.size();
+        }
+        EXPECT_GT(onPrimitive, 40u);  // not a vacuous comparison
+        for (int width : {16, 8, 4, 1}) {
+            if (width > direct.nativePacketWidth()) continue;
+            SCOPED_TRACE("packet width " + std::to_string(width));
+            expectPacketsEqualSingleRays(withPacketWidth(direct.intersector(), width), rays);
+            expectPacketsEqualSingleRays(withPacketWidth(direct.intersector(), width), rays, true);
+        }
+    }
 }
 
 TEST(IntersectorPacket, EmptyEmbreeSceneAnswersMissesInPackets) {

@@ -149,6 +149,42 @@ Hit toHit(const EmbreeIntersector& it, float tfar, unsigned geomID, unsigned pri
     return hit;
 }
 
+// ---- spheres and cylinders tested directly (EmbreeSceneOptions::directPrimitives) ----
+
+/// The closest of the intersector's direct spheres and cylinders hit with t in (0, tMax), written
+/// to `hit`; false (hit unchanged) if none is. Tested before Embree's query, whose tfar then
+/// becomes that t, so Embree culls what lies beyond and keeps a triangle only if it is nearer.
+/// tMax is Embree's tfar for the ray, as a user geometry's callback would get it.
+bool closestDirectHit(const EmbreeIntersector& it, const Ray& ray, Float tMax, Hit& hit) {
+    bool found = false;
+    Float t;
+    for (uint32_t i = 0; i < it.numDirectSpheres; ++i) {
+        if (primHit(it.directSpheres[i], ray.o, ray.d, tMax, t)) {
+            tMax = t;
+            hit = Hit{t, it.numTriangles + i};
+            found = true;
+        }
+    }
+    for (uint32_t i = 0; i < it.numDirectCylinders; ++i) {
+        if (primHit(it.directCylinders[i], ray.o, ray.d, tMax, t)) {
+            tMax = t;
+            hit = Hit{t, it.firstCylinder + i};
+            found = true;
+        }
+    }
+    return found;
+}
+
+/// Whether any direct sphere or cylinder is hit with t in (0, tMax).
+bool anyDirectHit(const EmbreeIntersector& it, const Ray& ray, Float tMax) {
+    Float t;
+    for (uint32_t i = 0; i < it.numDirectSpheres; ++i)
+        if (primHit(it.directSpheres[i], ray.o, ray.d, tMax, t)) return true;
+    for (uint32_t i = 0; i < it.numDirectCylinders; ++i)
+        if (primHit(it.directCylinders[i], ray.o, ray.d, tMax, t)) return true;
+    return false;
+}
+
 // ---- packets: Embree's packet types and calls by width ----
 
 template <class RH, class R, void (*Intersect)(const int*, RTCScene, RTCIntersectContext*, RH*),
@@ -200,13 +236,23 @@ void intersectPackets(const EmbreeIntersector& it, int n, const Ray* const* rays
             rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
             rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
         }
+        Hit direct[W];
+        bool directFound[W] = {};
+        if (it.hasDirectPrimitives()) {
+            for (int k = 0; k < m; ++k) {
+                if (!valid[k]) continue;
+                directFound[k] = closestDirectHit(it, *rays[first + k], rh.ray.tfar[k], direct[k]);
+                if (directFound[k]) rh.ray.tfar[k] = direct[k].t;
+            }
+        }
         Packet<W>::intersect(valid, it.scene, &context, &rh);
         for (int k = 0; k < m; ++k) {
             const bool hit = valid[k] && rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
-            found[first + k] = hit;
-            *hits[first + k] = hit ? toHit(it, rh.ray.tfar[k], rh.hit.geomID[k], rh.hit.primID[k],
-                                           rh.hit.u[k], rh.hit.v[k])
-                                   : Hit{};
+            found[first + k] = hit || directFound[k];
+            *hits[first + k] = hit              ? toHit(it, rh.ray.tfar[k], rh.hit.geomID[k], rh.hit.primID[k],
+                                                        rh.hit.u[k], rh.hit.v[k])
+                               : directFound[k] ? direct[k]
+                                                : Hit{};
         }
     }, coherent);
 }
@@ -217,8 +263,19 @@ void occludedPackets(const EmbreeIntersector& it, int n, const Ray* const* rays,
         alignas(64) int valid[W];
         alignas(64) typename Packet<W>::RayT r;
         fillPacket<W>(r, valid, m, rays + first);
-        Packet<W>::occluded(valid, it.scene, &context, &r);
-        for (int k = 0; k < m; ++k) occluded[first + k] = valid[k] && r.tfar[k] < 0;
+        bool directHit[W] = {};  // such a lane is occluded already: Embree skips it
+        bool anyLeft = true;
+        if (it.hasDirectPrimitives()) {
+            anyLeft = false;
+            for (int k = 0; k < m; ++k) {
+                if (!valid[k]) continue;
+                directHit[k] = anyDirectHit(it, *rays[first + k], r.tfar[k]);
+                if (directHit[k]) valid[k] = 0;
+                anyLeft = anyLeft || valid[k];
+            }
+        }
+        if (anyLeft) Packet<W>::occluded(valid, it.scene, &context, &r);
+        for (int k = 0; k < m; ++k) occluded[first + k] = directHit[k] || (valid[k] && r.tfar[k] < 0);
     });
 }
 
@@ -293,9 +350,16 @@ EmbreeScene::EmbreeScene(const Scene& scene, const EmbreeSceneOptions& options)
             rtcReleaseGeometry(geom);
             check("triangle geometry");
         }
-        if (!scene.spheres.empty()) addUserGeometry(scene.spheres, kSphereGeomId, "sphere geometry");
-        if (!scene.cylinders.empty())
-            addUserGeometry(scene.cylinders, kCylinderGeomId, "cylinder geometry");
+        if (scene.spheres.size() + scene.cylinders.size() <= options.directPrimitives) {
+            directSpheres_ = scene.spheres.data();
+            numDirectSpheres_ = uint32_t(scene.spheres.size());
+            directCylinders_ = scene.cylinders.data();
+            numDirectCylinders_ = uint32_t(scene.cylinders.size());
+        } else {
+            if (!scene.spheres.empty()) addUserGeometry(scene.spheres, kSphereGeomId, "sphere geometry");
+            if (!scene.cylinders.empty())
+                addUserGeometry(scene.cylinders, kCylinderGeomId, "cylinder geometry");
+        }
         rtcCommitScene(scene_);
         check("rtcCommitScene");
     } catch (...) {
@@ -346,8 +410,14 @@ bool EmbreeIntersector::intersect(const Ray& ray, Hit& hit) const {
     setRayLane(rayHit.ray, 0, ray);
     rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rayHit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    Hit direct;
+    const bool directFound = hasDirectPrimitives() && closestDirectHit(*this, ray, rayHit.ray.tfar, direct);
+    if (directFound) rayHit.ray.tfar = direct.t;
     rtcIntersect1(scene, &context, &rayHit);
-    if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+    if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+        if (directFound) hit = direct;
+        return directFound;
+    }
     hit = toHit(*this, rayHit.ray.tfar, rayHit.hit.geomID, rayHit.hit.primID, rayHit.hit.u, rayHit.hit.v);
     return true;
 }
@@ -358,6 +428,7 @@ bool EmbreeIntersector::occluded(const Ray& ray) const {
     rtcInitIntersectContext(&context);
     RTCRay r;
     setRayLane(r, 0, ray);
+    if (hasDirectPrimitives() && anyDirectHit(*this, ray, r.tfar)) return true;
     rtcOccluded1(scene, &context, &r);
     return r.tfar < 0;
 }

@@ -30,7 +30,14 @@ struct EmbreeIntersector {
     uint32_t numTriangles = 0;   // primId = primID for geometry 0, numTriangles + primID for 1,
     uint32_t firstCylinder = 0;  // firstCylinder + primID for 2 (cylinders)
     int packetWidth = 1;         // 16, 8, 4 or 1
+    // A scene's few spheres and cylinders (EmbreeSceneOptions::directPrimitives) are not in the
+    // Embree scene: each query tests them one by one before asking Embree. Empty otherwise.
+    const Sphere* directSpheres = nullptr;
+    uint32_t numDirectSpheres = 0;
+    const Cylinder* directCylinders = nullptr;
+    uint32_t numDirectCylinders = 0;
 
+    bool hasDirectPrimitives() const { return numDirectSpheres + numDirectCylinders > 0; }
     bool intersect(const Ray& ray, Hit& hit) const;
     bool occluded(const Ray& ray) const;
     /// See intersectPacket / occludedPacket (intersector.h); n <= kPacketSize.
@@ -49,6 +56,13 @@ struct EmbreeSceneOptions {
     /// AVX-512 whose clock it does not lower, else caps it at SSE4.2). The cap also bounds the
     /// packet width (16 needs AVX-512, 8 AVX, 4 SSE).
     EmbreeIsa isa = EmbreeIsa::Auto;
+    /// Up to this many spheres and cylinders in all are tested by caustica before each Embree
+    /// query instead of being Embree user geometry, whose per-ray dispatch (a second BVH, the
+    /// callback and its ray-record accessors) costs more than one test: 4-9% fewer instructions
+    /// with one sphere, 1-16% more with 2-16 small ones (docs/PERFORMANCE.md, 2026-11-29
+    /// evening). More of them go to Embree, whose BVH culls them. Both give the same hits (the
+    /// same intersectSphere / intersectCylinder decides). Tests set 0 to force user geometry.
+    uint32_t directPrimitives = 1;
 };
 
 /// Whether Embree may read `positions` in place (rtcSetSharedGeometryBuffer): its 16-byte vertex
@@ -60,9 +74,11 @@ bool sharesVertexArray(const std::vector<Vec3f>& positions);
 /// TRIANGLE over the Scene's own index and vertex arrays, shared, not copied; the vertices are
 /// copied into a padded Embree buffer only where sharesVertexArray is false), spheres and
 /// cylinders as user geometries 1 and 2 whose callbacks run caustica's own intersectSphere/
-/// intersectCylinder. Built with RTC_SCENE_FLAG_ROBUST unless `options.robust` is false. Embree
-/// reads `scene.triangles`, `scene.positions` (while building) and the callbacks `scene.spheres`
-/// and `scene.cylinders`, so `scene` must outlive this object and its arrays must not be resized
+/// intersectCylinder, or, when there are at most `options.directPrimitives` of them, tested by
+/// the intersector itself before each Embree query. Built with RTC_SCENE_FLAG_ROBUST unless
+/// `options.robust` is false. Embree reads `scene.triangles`, `scene.positions` (while building),
+/// the callbacks and the direct tests `scene.spheres` and `scene.cylinders`, so `scene` must
+/// outlive this object and its arrays must not be resized
 /// or reassigned meanwhile (moving the Scene keeps them). Errors reported by Embree are thrown as
 /// caustica::Error.
 class EmbreeScene {
@@ -73,7 +89,8 @@ public:
     EmbreeScene& operator=(const EmbreeScene&) = delete;
 
     EmbreeIntersector intersector() const {
-        return EmbreeIntersector{scene_, numTriangles_, firstCylinder_, packetWidth_};
+        return EmbreeIntersector{scene_,         numTriangles_,     firstCylinder_,   packetWidth_,
+                                 directSpheres_, numDirectSpheres_, directCylinders_, numDirectCylinders_};
     }
     /// Rays per Embree packet call: the widest packet Embree runs natively on this CPU (16, 8 or
     /// 4), else 1 (single rays). Narrower ones work too (set EmbreeIntersector::packetWidth).
@@ -99,6 +116,10 @@ private:
     uint32_t firstCylinder_ = 0;
     int packetWidth_ = 1;
     int nativePacketWidth_ = 1;
+    const Sphere* directSpheres_ = nullptr;  // see EmbreeIntersector
+    uint32_t numDirectSpheres_ = 0;
+    const Cylinder* directCylinders_ = nullptr;
+    uint32_t numDirectCylinders_ = 0;
     EmbreeIsa isa_ = EmbreeIsa::Widest;
     bool sharesVertices_ = false;
     double buildMilliseconds_ = 0;

@@ -22,32 +22,41 @@ TEST(EmbreeIsa, NamesRoundTripAndUnknownOnesAreRefused) {
     }
 }
 
-CpuModel cpu(bool intel, unsigned family, unsigned model, bool avx512) {
+CpuModel cpu(CpuVendor vendor, unsigned family, unsigned model, bool avx512) {
     CpuModel c;
-    c.intel = intel;
+    c.vendor = vendor;
     c.family = family;
     c.model = model;
     c.avx512 = avx512;
     return c;
 }
 
-TEST(EmbreeIsa, AutoTakesTheWidestOnlyOnAvx512CpusWhoseClockItDoesNotLower) {
-    const CpuModel cascadeLake = cpu(true, 6, 0x55, true), iceLakeServer = cpu(true, 6, 0x6a, true),
-                   emeraldRapids = cpu(true, 6, 0xcf, true), zen4 = cpu(false, 25, 0x11, true),
-                   zen3 = cpu(false, 25, 0x21, false), alderLake = cpu(true, 6, 0x97, false), unknown;
+TEST(EmbreeIsa, AutoTakesTheWidestOnAvx512CpusWhoseClockItDoesNotLowerAndOnZen3) {
+    constexpr CpuVendor intel = CpuVendor::Intel, amd = CpuVendor::Amd;
+    const CpuModel cascadeLake = cpu(intel, 6, 0x55, true), iceLakeServer = cpu(intel, 6, 0x6a, true),
+                   emeraldRapids = cpu(intel, 6, 0xcf, true), zen4 = cpu(amd, 25, 0x11, true),
+                   zen3 = cpu(amd, 25, 0x01, false), zen2 = cpu(amd, 23, 0x31, false),
+                   alderLake = cpu(intel, 6, 0x97, false), otherFamily25 = cpu(CpuVendor::Other, 25, 0x01, false),
+                   unknown;
     EXPECT_TRUE(avx512LowersClock(cascadeLake));
     for (const CpuModel& c : {iceLakeServer, emeraldRapids, zen4, zen3, alderLake, unknown})
         EXPECT_FALSE(avx512LowersClock(c));
-    EXPECT_FALSE(avx512LowersClock(cpu(false, 6, 0x55, true)));  // model 0x55 of another vendor
-    for (const CpuModel& c : {iceLakeServer, emeraldRapids, zen4})
+    EXPECT_FALSE(avx512LowersClock(cpu(amd, 6, 0x55, true)));  // model 0x55 of another vendor
+    EXPECT_TRUE(avx2PacketsMatchSingleRays(zen3));
+    EXPECT_TRUE(avx2PacketsMatchSingleRays(cpu(amd, 26, 0x02, false)));  // later AMD families too
+    for (const CpuModel& c : {zen2, alderLake, otherFamily25, cascadeLake, unknown})
+        EXPECT_FALSE(avx2PacketsMatchSingleRays(c));
+    for (const CpuModel& c : {iceLakeServer, emeraldRapids, zen4, zen3})
         EXPECT_EQ(resolveEmbreeIsa(EmbreeIsa::Auto, c), EmbreeIsa::Widest);
-    // AVX-512 slows the clock, or Embree's widest would be AVX2 (packets != single rays).
-    for (const CpuModel& c : {cascadeLake, zen3, alderLake, unknown})
+    // AVX-512 slows the clock, or Embree's widest would be AVX2 where its packets were not
+    // measured (or measured not) to answer as its single rays.
+    for (const CpuModel& c : {cascadeLake, zen2, alderLake, otherFamily25, unknown})
         EXPECT_EQ(resolveEmbreeIsa(EmbreeIsa::Auto, c), EmbreeIsa::Sse42);
     // A cap the user names is kept on every CPU.
     for (EmbreeIsa isa : {EmbreeIsa::Widest, EmbreeIsa::Sse42}) {
         EXPECT_EQ(resolveEmbreeIsa(isa, cascadeLake), isa);
         EXPECT_EQ(resolveEmbreeIsa(isa, zen3), isa);
+        EXPECT_EQ(resolveEmbreeIsa(isa, zen2), isa);
         EXPECT_EQ(resolveEmbreeIsa(isa, emeraldRapids), isa);
     }
 }

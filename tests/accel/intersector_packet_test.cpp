@@ -102,9 +102,10 @@ EmbreeIntersector withPacketWidth(EmbreeIntersector it, int width) {
     return it;
 }
 
-// With the cap `auto` chooses on this CPU (and with SSE4.2, its choice on CPUs without AVX-512 or
-// whose clock AVX-512 lowers) Embree's packets answer as its single rays, to the bit: what makes
-// the wavefront's image the megakernel's (embree_isa.h; Embree's AVX2 kernels would not).
+// With the cap `auto` chooses on this CPU (AVX2 on AMD Zen 3; elsewhere without AVX-512, or where
+// AVX-512 lowers the clock, SSE4.2, which is also tested) Embree's packets answer as its single
+// rays, to the bit: what makes the wavefront's image the megakernel's (embree_isa.h; Embree's AVX2
+// kernels did not on an Intel CPU capped at AVX2).
 TEST(IntersectorPacket, EmbreePacketsOfEveryWidthEqualSingleRays) {
     const Scene scene = mixedScene(11);
     for (EmbreeIsa isa : {EmbreeIsa::Auto, EmbreeIsa::Sse42}) {

@@ -31,7 +31,8 @@ CpuModel hostCpuModel() {
     unsigned eax = 0, ebx = 0, ecx = 0, edx = 0;
     if (!__get_cpuid(0, &eax, &ebx, &ecx, &edx)) return cpu;
     const unsigned maxLeaf = eax;
-    cpu.intel = ebx == 0x756e6547 && edx == 0x49656e69 && ecx == 0x6c65746e;  // "GenuineIntel"
+    if (ebx == 0x756e6547 && edx == 0x49656e69 && ecx == 0x6c65746e) cpu.vendor = CpuVendor::Intel;  // GenuineIntel
+    if (ebx == 0x68747541 && edx == 0x69746e65 && ecx == 0x444d4163) cpu.vendor = CpuVendor::Amd;    // AuthenticAMD
     if (!__get_cpuid(1, &eax, &ebx, &ecx, &edx)) return cpu;
     const unsigned baseFamily = (eax >> 8) & 0xf, baseModel = (eax >> 4) & 0xf;
     const unsigned extFamily = (eax >> 20) & 0xff, extModel = (eax >> 16) & 0xf;
@@ -52,12 +53,17 @@ CpuModel hostCpuModel() {
 }
 
 bool avx512LowersClock(const CpuModel& cpu) {
-    return cpu.intel && cpu.family == 6 && cpu.model == 0x55;
+    return cpu.vendor == CpuVendor::Intel && cpu.family == 6 && cpu.model == 0x55;
+}
+
+bool avx2PacketsMatchSingleRays(const CpuModel& cpu) {
+    return cpu.vendor == CpuVendor::Amd && cpu.family >= 25;
 }
 
 EmbreeIsa resolveEmbreeIsa(EmbreeIsa isa, const CpuModel& cpu) {
     if (isa != EmbreeIsa::Auto) return isa;
-    return cpu.avx512 && !avx512LowersClock(cpu) ? EmbreeIsa::Widest : EmbreeIsa::Sse42;
+    const bool widest = (cpu.avx512 && !avx512LowersClock(cpu)) || avx2PacketsMatchSingleRays(cpu);
+    return widest ? EmbreeIsa::Widest : EmbreeIsa::Sse42;
 }
 
 std::string embreeDeviceConfig(EmbreeIsa resolved) {

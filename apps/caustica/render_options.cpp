@@ -38,7 +38,8 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
     cmd.add_option("--accel", o.accel, "Ray-tracing backend on the CPU (a GPU traces the own BVH)")
         ->check(CLI::IsMember({"embree", "bvh"}));
     cmd.add_option("--embree-isa", o.embreeIsa, "Instruction set of Embree's kernels: auto (default: the widest on "
-                   "CPUs with AVX-512 whose clock it does not lower, else sse4.2), widest or sse4.2")
+                   "CPUs with AVX-512 whose clock it does not lower and on AMD Zen 3, else sse4.2), "
+                   "widest or sse4.2")
         ->check(CLI::IsMember({"auto", "widest", "sse4.2"}));
     std::vector<std::string> names;
     for (const IntegratorEntry& e : integratorRegistry()) names.push_back(e.name);

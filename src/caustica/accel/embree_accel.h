@@ -53,7 +53,7 @@ struct EmbreeSceneOptions {
     /// vertices (tests/accel/watertight_test.cpp). Only tests turn it off.
     bool robust = true;
     /// The widest instruction set Embree may use (embree_isa.h: auto leaves it free on CPUs with
-    /// AVX-512 whose clock it does not lower, else caps it at SSE4.2). The cap also bounds the
+    /// AVX-512 whose clock it does not lower and on AMD Zen 3, else caps it at SSE4.2). The cap also bounds the
     /// packet width (16 needs AVX-512, 8 AVX, 4 SSE).
     EmbreeIsa isa = EmbreeIsa::Auto;
     /// Up to this many spheres and cylinders in all are tested by caustica before each Embree

@@ -31,7 +31,7 @@ struct RenderRequest {
     int gpu = -1;
     AccelKind accel = AccelKind::Embree;  // the CPU's ray tracer (a GPU traces the own BVH)
     /// The widest instruction set Embree may use (embree_isa.h): auto leaves it free on CPUs with
-    /// AVX-512 whose clock it does not lower, else caps it at SSE4.2.
+    /// AVX-512 whose clock it does not lower and on AMD Zen 3, else caps it at SSE4.2.
     EmbreeIsa embreeIsa = EmbreeIsa::Auto;
     /// CPU path tracer: wavefront | megakernel (the same image). The wavefront is the default: on
     /// every bundled scene it is at least as fast as the megakernel at 1 and 2 threads with Embree

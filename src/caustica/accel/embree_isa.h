@@ -32,9 +32,10 @@ EmbreeIsa parseEmbreeIsa(const std::string& name);
 /// The name parseEmbreeIsa accepts for `isa`.
 const char* embreeIsaName(EmbreeIsa isa);
 
-/// The processor as CPUID reports it (x86 only; elsewhere all zero / false).
+/// The CPU's maker, from CPUID leaf 0 ("GenuineIntel", "AuthenticAMD"; anything else Other).
 enum class CpuVendor { Other, Intel, Amd };
 
+/// The processor as CPUID reports it (x86 only; elsewhere all zero / false).
 struct CpuModel {
     CpuVendor vendor = CpuVendor::Other;
     unsigned family = 0;  // display family (base + extended)

@@ -12,6 +12,7 @@
 
 #include "caustica/accel/intersector.h"
 #include "caustica/accel/primitive_intersect.h"
+#include "caustica/accel/sphere_lanes.h"
 #include "caustica/util/error.h"
 
 namespace caustica {
@@ -185,6 +186,37 @@ bool anyDirectHit(const EmbreeIntersector& it, const Ray& ray, Float tMax) {
     return false;
 }
 
+/// Whether the intersector's direct primitives are one sphere and nothing else (the bundled
+/// scenes' case), which the packet queries test four lanes at a time (directSphereLanes).
+bool oneDirectSphere(const EmbreeIntersector& it) {
+    return it.numDirectSpheres == 1 && it.numDirectCylinders == 0;
+}
+
+/// The one direct sphere against the valid lanes [0, m) of packet `r` (fillPacket's; W a multiple
+/// of 4), four lanes per SSE test: where lane k hits (before r.tfar[k]), hitT[k] is its t and bit
+/// k of the result is set. The lanes get what closestDirectHit and anyDirectHit give their rays:
+/// intersectSphere4 is intersectSphere to the bit, and the packet holds the rays' own floats.
+template <int W, class R>
+uint32_t directSphereLanes(const EmbreeIntersector& it, const R& r, const int (&valid)[W], int m, float (&hitT)[W]) {
+    static_assert(W % 4 == 0, "packets of 4, 8 or 16 lanes");
+    const Sphere& s = it.directSpheres[0];
+    uint32_t hits = 0;
+    for (int k0 = 0; k0 < m; k0 += 4) {
+        const RayLanes4 lanes{_mm_loadu_ps(r.org_x + k0), _mm_loadu_ps(r.org_y + k0), _mm_loadu_ps(r.org_z + k0),
+                              _mm_loadu_ps(r.dir_x + k0), _mm_loadu_ps(r.dir_y + k0), _mm_loadu_ps(r.dir_z + k0),
+                              _mm_loadu_ps(r.tfar + k0)};
+        float t[4];
+        uint32_t mask = intersectSphere4(lanes, s.center, s.radius, t);
+        for (; mask != 0; mask &= mask - 1) {
+            const int k = k0 + __builtin_ctz(mask);
+            if (k >= m || !valid[k]) continue;
+            hitT[k] = t[k - k0];
+            hits |= 1u << k;
+        }
+    }
+    return hits;
+}
+
 // ---- packets: Embree's packet types and calls by width ----
 
 template <class RH, class R, void (*Intersect)(const int*, RTCScene, RTCIntersectContext*, RH*),
@@ -238,7 +270,15 @@ void intersectPackets(const EmbreeIntersector& it, int n, const Ray* const* rays
         }
         Hit direct[W];
         bool directFound[W] = {};
-        if (it.hasDirectPrimitives()) {
+        if (oneDirectSphere(it)) {
+            float t[W];
+            for (uint32_t lanes = directSphereLanes<W>(it, rh.ray, valid, m, t); lanes != 0; lanes &= lanes - 1) {
+                const int k = __builtin_ctz(lanes);
+                direct[k] = Hit{t[k], it.numTriangles};
+                directFound[k] = true;
+                rh.ray.tfar[k] = t[k];
+            }
+        } else if (it.hasDirectPrimitives()) {
             for (int k = 0; k < m; ++k) {
                 if (!valid[k]) continue;
                 directFound[k] = closestDirectHit(it, *rays[first + k], rh.ray.tfar[k], direct[k]);
@@ -265,7 +305,16 @@ void occludedPackets(const EmbreeIntersector& it, int n, const Ray* const* rays,
         fillPacket<W>(r, valid, m, rays + first);
         bool directHit[W] = {};  // such a lane is occluded already: Embree skips it
         bool anyLeft = true;
-        if (it.hasDirectPrimitives()) {
+        if (oneDirectSphere(it)) {
+            float t[W];
+            const uint32_t lanes = directSphereLanes<W>(it, r, valid, m, t);
+            anyLeft = false;
+            for (int k = 0; k < m; ++k) {
+                directHit[k] = (lanes >> k) & 1u;
+                if (directHit[k]) valid[k] = 0;
+                anyLeft = anyLeft || valid[k];
+            }
+        } else if (it.hasDirectPrimitives()) {
             anyLeft = false;
             for (int k = 0; k < m; ++k) {
                 if (!valid[k]) continue;

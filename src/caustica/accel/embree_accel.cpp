@@ -189,9 +189,10 @@ bool anyDirectHit(const EmbreeIntersector& it, const Ray& ray, Float tMax) {
 /// Whether the intersector's direct primitives are one sphere and nothing else (the bundled
 /// scenes' case), which the packet queries test four lanes at a time (directSphereLanes).
 bool oneDirectSphere(const EmbreeIntersector& it) {
-    return it.numDirectSpheres == 1 && it.numDirectCylinders == 0;
+    return CA_SPHERE_LANES && it.numDirectSpheres == 1 && it.numDirectCylinders == 0;
 }
 
+#if CA_SPHERE_LANES
 /// The one direct sphere against the valid lanes [0, m) of packet `r` (fillPacket's; W a multiple
 /// of 4), four lanes per SSE test: where lane k hits (before r.tfar[k]), hitT[k] is its t and bit
 /// k of the result is set. The lanes get what closestDirectHit and anyDirectHit give their rays:
@@ -216,6 +217,12 @@ uint32_t directSphereLanes(const EmbreeIntersector& it, const R& r, const int (&
     }
     return hits;
 }
+#else
+template <int W, class R>
+uint32_t directSphereLanes(const EmbreeIntersector&, const R&, const int (&)[W], int, float (&)[W]) {
+    return 0;  // never called: oneDirectSphere is false
+}
+#endif
 
 // ---- packets: Embree's packet types and calls by width ----
 

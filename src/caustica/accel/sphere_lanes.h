@@ -4,6 +4,8 @@
 // (embree_accel.cpp) tests its lanes with it, the single-ray queries with the scalar test.
 #pragma once
 
+#if defined(__SSE2__) || defined(_M_X64)
+#define CA_SPHERE_LANES 1
 #include <emmintrin.h>
 
 #include <cstdint>
@@ -56,3 +58,6 @@ inline uint32_t intersectSphere4(const RayLanes4& r, Vec3f center, Float radius,
 }
 
 }  // namespace caustica
+#else
+#define CA_SPHERE_LANES 0  // no SSE2: the packets test their direct sphere lane by lane
+#endif

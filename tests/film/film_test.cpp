@@ -5,6 +5,7 @@
 
 #include <cstring>
 #include <limits>
+#include <numeric>
 #include <random>
 #include <sstream>
 
@@ -119,6 +120,43 @@ TEST(Film, InvalidSamplesAreCountedAndDropped) {
     EXPECT_EQ(img.at(0, 1).r, pass.at(0, 1, 1).L.r);
     EXPECT_EQ(img.at(1, 1).r, 0.0f);
     EXPECT_EQ(img.at(2, 1).r, 0.5f * (pass.at(2, 1, 0).L.r + pass.at(2, 1, 1).L.r));
+}
+
+// The box filter's one-kernel path (film_gather.h, GatherGrid::box) forms the general two-kernel
+// path's sums and invalid counts bit for bit, invalid samples of every kind included.
+TEST(Film, BoxFilterShortPathEqualsTheGeneralGather) {
+    const int w = 9, h = 7, k = 5;
+    SamplePass pass = randomPass(w, h, k, 11);
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    pass.at(0, 0, 0).L = Spectrum(nan, 1, 1);
+    pass.at(3, 2, 4).L = Spectrum(1, -1, 1);
+    pass.at(4, 4, 1).pos = Vec2f(6.5f, 4.5f);  // in another pixel
+    pass.at(8, 6, 2).pos = Vec2f(8.0f - 0.01f, 6.5f);  // within the slack: kept
+    pass.at(5, 1, 0).pos = Vec2f(5.5f, nan);
+    std::vector<float> weightsShort, weightsGeneral;
+    std::vector<uint32_t> invalidShort, invalidGeneral;
+    FilmSplatView shortView, generalView;
+    shortView.samples = generalView.samples = pass.samples.data();
+    shortView.grid = gatherGrid(w, h, k, Filter::box(), weightsShort, invalidShort);
+    ASSERT_TRUE(shortView.grid.box);
+    EXPECT_TRUE(weightsShort.empty());
+    generalView.grid = gatherGrid(w, h, k, Filter::box(), weightsGeneral, invalidGeneral);
+    generalView.grid.box = false;
+    weightsGeneral.resize(size_t(w) * h * k * 2);
+    generalView.grid.weights = weightsGeneral.data();
+    for (size_t pixel = 0; pixel < size_t(w) * h; ++pixel) {
+        sampleWeights(shortView, pixel);
+        sampleWeights(generalView, pixel);
+    }
+    for (size_t pixel = 0; pixel < size_t(w) * h; ++pixel) {
+        float a[3], aw, b[3], bw;
+        gatherSums<3>(shortView.grid, shortView, pixel, a, aw);
+        gatherSums<3>(generalView.grid, generalView, pixel, b, bw);
+        EXPECT_EQ(std::memcmp(a, b, sizeof a), 0) << pixel;
+        EXPECT_EQ(std::memcmp(&aw, &bw, sizeof aw), 0) << pixel;
+        EXPECT_EQ(invalidShort[pixel], invalidGeneral[pixel]) << pixel;
+    }
+    EXPECT_EQ(std::accumulate(invalidShort.begin(), invalidShort.end(), 0u), 4u);
 }
 
 TEST(Film, SamplesOnThePixelEdgeAreKept) {

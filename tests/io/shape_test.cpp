@@ -110,7 +110,24 @@ void expectMitsubaSphereHits(const Scene& s, std::initializer_list<MitsubaSphere
         Hit hit;
         hit.primId = view.numTriangles();
         ASSERT_TRUE(intersectSphere(ray.o, ray.d, kInfinity, sphere.center, sphere.radius, hit.t));
-        const SurfaceInteraction si = computeInteraction(view, ray, hit);
+        const SurfaceInteraction si = computeInteraction(view, ray, hit, true);
+        // Without uv (a scene without textures reads none): every other field the same bits.
+        const SurfaceInteraction noUv = computeInteraction(view, ray, hit, false);
+        EXPECT_EQ(noUv.uv.x, 0.0f);
+        EXPECT_EQ(noUv.uv.y, 0.0f);
+        for (int i = 0; i < 3; ++i) {
+            EXPECT_EQ(noUv.p[i], si.p[i]);
+            EXPECT_EQ(noUv.ng[i], si.ng[i]);
+            EXPECT_EQ(noUv.ns[i], si.ns[i]);
+            EXPECT_EQ(noUv.dpdu[i], si.dpdu[i]);
+            EXPECT_EQ(noUv.dpdv[i], si.dpdv[i]);
+        }
+        // By default uv is there exactly where the scene has textures to read it with.
+        EXPECT_EQ(computeInteraction(view, ray, hit).uv.x, 0.0f);
+        SceneView textured = view;
+        const Texture texture{};
+        textured.textures = Span<const Texture>(&texture, 1);
+        EXPECT_EQ(computeInteraction(textured, ray, hit).uv.x, si.uv.x);
         EXPECT_NEAR(si.uv.x, m.uv.x, 2e-5);
         EXPECT_NEAR(si.uv.y, m.uv.y, 2e-5);
         EXPECT_NEAR(length(si.dpdu - m.dpdu), 0, 2e-4);

@@ -378,7 +378,8 @@ TEST(ShadingFrame, MeshAndSphereDpdu) {
     EXPECT_NEAR(length(si.dpdu - face.s), 0, 1e-6);
     EXPECT_NEAR(length(si.dpdv - face.t), 0, 1e-6);
     hit.primId = 3;  // the sphere, hit at its +x point: dp/du = 2π r (0, 1, 0), dp/dv = π r (0, 0, -1)
-    si = computeInteraction(view, Ray{Vec3f(4, 0, 5), Vec3f(-1, 0, 0), 10}, hit);
+    // (uv asked for: this scene has no textures, so by default a sphere's uv is not filled in)
+    si = computeInteraction(view, Ray{Vec3f(4, 0, 5), Vec3f(-1, 0, 0), 10}, hit, true);
     EXPECT_NEAR(length(si.dpdu - Vec3f(0, 4 * kPi, 0)), 0, 1e-4);
     EXPECT_NEAR(length(si.dpdv - Vec3f(0, 0, -2 * kPi)), 0, 1e-4);
     EXPECT_NEAR(si.uv.x, 0, 1e-6);

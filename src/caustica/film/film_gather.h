@@ -12,6 +12,12 @@
 // Kernel 2 (gatherSums, per output pixel) visits source rows y - f .. y + f, columns x - f ..
 // x + f (clipped to the image and, on a stereo film, to the pixel's eye), samples k = 0 .. K-1, in that fixed order, and sums w v per channel and w: the same
 // additions in the same order whatever the thread count or device.
+//
+// The box filter (Mitsuba's default, one pixel wide) weighs every valid sample of a pixel 1 and
+// reaches no other pixel: kernel 1 then does nothing (no weights are stored) and kernel 2
+// validates its own pixel's samples, counts the invalid ones and adds the valid ones with w = 1 —
+// the sums the general path forms, bit for bit, without writing and reading back 8 bytes of
+// weights per sample.
 #pragma once
 
 #include <cmath>
@@ -33,6 +39,7 @@ struct GatherGrid {
     int width = 0, height = 0, samplesPerPixel = 0;
     int footprint = 0;  // f: source pixels visited on each side of the output pixel
     int eyeWidth = 0;   // stereo: one eye's width; the filter never crosses the seam (eye_seam.h)
+    bool box = false;   // the box filter: kernel 2 validates and sums alone (see the file comment)
     Filter filter;
     float* weights = nullptr;     // 2 (2f + 1) per sample
     uint32_t* invalid = nullptr;  // per source pixel: its invalid samples
@@ -50,8 +57,10 @@ inline GatherGrid gatherGrid(int width, int height, int samplesPerPixel, const F
     g.samplesPerPixel = samplesPerPixel;
     g.footprint = filter.footprint();
     g.filter = filter;
-    weights.resize(size_t(width) * size_t(height) * size_t(samplesPerPixel) *
-                   size_t(2 * (2 * g.footprint + 1)));
+    g.box = filter.type == FilterType::Box && g.footprint == 0;
+    weights.resize(g.box ? 0
+                         : size_t(width) * size_t(height) * size_t(samplesPerPixel) *
+                               size_t(2 * (2 * g.footprint + 1)));
     invalid.resize(size_t(width) * size_t(height));
     g.weights = weights.data();
     g.invalid = invalid.data();
@@ -75,6 +84,7 @@ CA_HD_INLINE bool sampleOffset(Vec2f pos, int px, int py, Float& u, Float& v) {
 /// false for a sample whose values are invalid.
 template <class Samples>
 CA_HD_INLINE void gatherWeights(const GatherGrid& g, const Samples& samples, size_t pixel) {
+    if (g.box) return;  // kernel 2 does it all (boxSums)
     const int px = int(pixel % size_t(g.width)), py = int(pixel / size_t(g.width));
     const int f = g.footprint, n = 2 * f + 1;
     uint32_t invalid = 0;
@@ -98,6 +108,36 @@ CA_HD_INLINE void gatherWeights(const GatherGrid& g, const Samples& samples, siz
     g.invalid[pixel] = invalid;
 }
 
+/// Kernel 2 of the box filter (g.box) for one pixel: its own K samples, each valid one (as
+/// gatherWeights validates) with weight 1; writes g.invalid[pixel]. The general path's sums, bit
+/// for bit: there every valid sample's weight is exactly 1 · 1 and every invalid one's 0.
+template <int C, class Samples>
+CA_HD_INLINE void boxSums(const GatherGrid& g, const Samples& samples, size_t pixel, float (&sum)[C],
+                          float& wSum) {
+    const int x = int(pixel % size_t(g.width)), y = int(pixel / size_t(g.width));
+    float acc[C];
+    for (int c = 0; c < C; ++c) acc[c] = 0;
+    float ws = 0;
+    uint32_t invalid = 0;
+    for (int k = 0; k < g.samplesPerPixel; ++k) {
+        const size_t sample = pixel * size_t(g.samplesPerPixel) + size_t(k);
+        Vec2f pos;
+        Float u, v;
+        if (!samples.position(sample, pos) || !sampleOffset(pos, x, y, u, v)) {
+            ++invalid;
+            continue;
+        }
+        const float w = 1;
+        float value[C];
+        samples.sampleValues(sample, value);
+        for (int c = 0; c < C; ++c) acc[c] += w * value[c];
+        ws += w;
+    }
+    g.invalid[pixel] = invalid;  // (each of the AOV film's channel groups writes the same count)
+    for (int c = 0; c < C; ++c) sum[c] = acc[c];
+    wSum = ws;
+}
+
 /// Kernel 2 for one output pixel: sum[c] = Σ w v_c for the C channels (Samples:
 /// `CA_HD void sampleValues(size_t sample, float (&v)[C]) const`), wSum = Σ w. One pass adds at
 /// most (2f + 1)^2 K terms: float sums lose nothing that matters (the callers keep long-running
@@ -105,6 +145,10 @@ CA_HD_INLINE void gatherWeights(const GatherGrid& g, const Samples& samples, siz
 template <int C, class Samples>
 CA_HD_INLINE void gatherSums(const GatherGrid& g, const Samples& samples, size_t pixel,
                              float (&sum)[C], float& wSum) {
+    if (g.box) {
+        boxSums<C>(g, samples, pixel, sum, wSum);
+        return;
+    }
     const int x = int(pixel % size_t(g.width)), y = int(pixel / size_t(g.width));
     const int K = g.samplesPerPixel, f = g.footprint, n = 2 * f + 1;
     // Local sums (registers): the output may alias the float weights as far as the compiler knows.

@@ -55,13 +55,17 @@ CA_HD_INLINE void cylinderInteraction(const Cylinder& c, bool flip, SurfaceInter
 /// space (to_object, on the unit sphere), uv = (φ / 2π, θ / π) of l, dp/du = 2π to_world(−l.y,
 /// l.x, 0), dp/dv = π to_world(l.z cosφ, l.z sinφ, −ρ), ρ = sqrt(l.x² + l.y²); dp/dv =
 /// π to_world(1, 0, 0) at the poles (src/shapes/sphere.cpp, compute_surface_interaction).
-CA_HD_INLINE void sphereInteraction(const Sphere& s, bool flip, SurfaceInteraction& si) {
+/// `withUv` false leaves si.uv alone: nothing else needs φ and θ, whose atan2 and acos are most
+/// of the cost of a sphere hit.
+CA_HD_INLINE void sphereInteraction(const Sphere& s, bool flip, SurfaceInteraction& si, bool withUv = true) {
     Vec3f n = normalize(si.p - s.center);
     si.p = s.center + n * s.radius;
     const Vec3f l(dot(n, s.objectX), dot(n, s.objectY), dot(n, s.objectZ));
-    Float phi = std::atan2(l.y, l.x);
-    if (phi < 0) phi += 2 * kPi;
-    si.uv = Vec2f(phi * kInv2Pi, std::acos(clamp(l.z, Float(-1), Float(1))) * kInvPi);
+    if (withUv) {
+        Float phi = std::atan2(l.y, l.x);
+        if (phi < 0) phi += 2 * kPi;
+        si.uv = Vec2f(phi * kInv2Pi, std::acos(clamp(l.z, Float(-1), Float(1))) * kInvPi);
+    }
     const Float rho = std::sqrt(l.x * l.x + l.y * l.y);
     const Vec3f dv = rho > 0 ? Vec3f(l.z * l.x / rho, l.z * l.y / rho, -rho) : Vec3f(1, 0, 0);
     si.dpdu = (s.objectY * l.x - s.objectX * l.y) * (2 * kPi * s.radius);
@@ -113,8 +117,14 @@ CA_HD_INLINE TrianglePoint trianglePoint(const SceneView& scene, const Shape& sh
     return t;
 }
 
-/// Fills the interaction for a valid hit of `ray`.
-CA_HD_INLINE SurfaceInteraction computeInteraction(const SceneView& scene, const Ray& ray, const Hit& hit) {
+/// Whether a render of `scene` reads SurfaceInteraction::uv: only BSDF textures (bump and normal
+/// maps included) do, so a scene without textures needs none (the uv AOV asks for it itself).
+CA_HD_INLINE bool sceneReadsUv(const SceneView& scene) { return scene.textures.size() > 0; }
+
+/// Fills the interaction for a valid hit of `ray`. `withUv` false: a sphere's si.uv is left (0, 0)
+/// (sphereInteraction); every other field, and every other shape's uv, is the same.
+CA_HD_INLINE SurfaceInteraction computeInteraction(const SceneView& scene, const Ray& ray, const Hit& hit,
+                                                   bool withUv) {
     SurfaceInteraction si;
     si.primId = hit.primId;
     si.textures = scene.textureView();
@@ -156,9 +166,14 @@ CA_HD_INLINE SurfaceInteraction computeInteraction(const SceneView& scene, const
     } else {
         const Sphere& s = scene.spheres[hit.primId - scene.numTriangles()];
         si.shape = s.shape;
-        sphereInteraction(s, scene.shapes[s.shape].flipNormals, si);
+        sphereInteraction(s, scene.shapes[s.shape].flipNormals, si, withUv);
     }
     return si;
+}
+
+/// The interaction with uv where the scene reads it (sceneReadsUv).
+CA_HD_INLINE SurfaceInteraction computeInteraction(const SceneView& scene, const Ray& ray, const Hit& hit) {
+    return computeInteraction(scene, ray, hit, sceneReadsUv(scene));
 }
 
 }  // namespace caustica

@@ -58,7 +58,7 @@ CA_HD_INLINE void aovValues(const SceneView& view, const Ray& ray, const Hit& hi
         for (int c = 0; c < layout.channels; ++c) out[c] = 0;
         return;
     }
-    const SurfaceInteraction si = computeInteraction(view, ray, hit);
+    const SurfaceInteraction si = computeInteraction(view, ray, hit, true);  // the uv AOV reads uv
     for (int i = 0; i < layout.count; ++i) {
         switch (layout.types[i]) {
             case AovType::Depth:

@@ -6,6 +6,13 @@
 
 #include "caustica/util/math.h"
 
+#if !defined(__CUDA_ARCH__) && (defined(__SSE2__) || defined(_M_X64))
+#define CA_RAY_SSE 1
+#include <emmintrin.h>
+#else
+#define CA_RAY_SSE 0
+#endif
+
 namespace caustica {
 
 struct Ray {
@@ -50,6 +57,23 @@ CA_HD_INLINE Float nextFloatTowardZero(Float x) {
 /// and Robust Method for Avoiding Self-Intersection", Ray Tracing Gems, 2019, ch. 6).
 CA_HD_FORCE_INLINE Vec3f offsetRayOrigin(Vec3f p, Vec3f n) {
     constexpr Float kOrigin = 1.0f / 32.0f, kFloatScale = 1.0f / 65536.0f, kIntScale = 256.0f;
+#if CA_RAY_SSE
+    // The loop below, the three coordinates as lanes of one SSE register: the same operations in
+    // the same order (truncating conversion, wrapping integer add, no contraction), so the same
+    // bits (tests/scene/ray_test.cpp); about 20 instructions instead of 35, three times a bounce.
+    const __m128 P = _mm_setr_ps(p.x, p.y, p.z, 0), N = _mm_setr_ps(n.x, n.y, n.z, 0);
+    const __m128i of = _mm_cvttps_epi32(_mm_mul_ps(_mm_set1_ps(kIntScale), N));
+    const __m128i negative = _mm_castps_si128(_mm_cmplt_ps(P, _mm_setzero_ps()));
+    const __m128i signedOf = _mm_sub_epi32(_mm_xor_si128(of, negative), negative);  // p < 0 ? -of : of
+    const __m128 moved = _mm_castsi128_ps(_mm_add_epi32(_mm_castps_si128(P), signedOf));
+    const __m128 absP = _mm_and_ps(P, _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff)));
+    const __m128 nearOrigin = _mm_cmplt_ps(absP, _mm_set1_ps(kOrigin));
+    const __m128 nudged = _mm_add_ps(P, _mm_mul_ps(_mm_set1_ps(kFloatScale), N));
+    const __m128 out = _mm_or_ps(_mm_and_ps(nearOrigin, nudged), _mm_andnot_ps(nearOrigin, moved));
+    alignas(16) float lanes[4];
+    _mm_store_ps(lanes, out);
+    return {lanes[0], lanes[1], lanes[2]};
+#else
     Vec3f out;
     for (int i = 0; i < 3; ++i) {
         int32_t of = int32_t(kIntScale * n[i]);
@@ -57,6 +81,7 @@ CA_HD_FORCE_INLINE Vec3f offsetRayOrigin(Vec3f p, Vec3f n) {
         out[i] = std::fabs(p[i]) < kOrigin ? p[i] + kFloatScale * n[i] : pi;
     }
     return out;
+#endif
 }
 
 /// spawnRay written into `ray` field by field. (g++ assembles a returned Ray on the stack from

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "caustica/util/lane.h"
 #include "caustica/util/platform.h"
 
 namespace caustica {
@@ -67,14 +68,16 @@ CA_HD_INLINE float exp2Approx(float x) {
 /// correctly rounded values, tests/util/math_test.cpp). No range reduction and no libm call: the
 /// concentric disk map (sampling.h), the warp of every diffuse bounce, takes its angle from this
 /// range; sincosf and that warp were 5% of cornell-box's CPU time (sincosf alone 2.2%).
-CA_HD_INLINE void sinCosQuarterPi(float a, float& s, float& c) {
-    const float a2 = a * a;
-    float ps = 1.0f / 362880;  // Horner from the a^9 term down
+/// Generic over the lane type F (lane.h).
+template <LaneFloat F>
+CA_HD_INLINE void sinCosQuarterPi(F a, F& s, F& c) {
+    const F a2 = a * a;
+    F ps = lane::splat<F>(1.0f / 362880);  // Horner from the a^9 term down
     ps = ps * a2 - 1.0f / 5040;
     ps = ps * a2 + 1.0f / 120;
     ps = ps * a2 - 1.0f / 6;
     s = a + a * a2 * ps;
-    float pc = -1.0f / 3628800;
+    F pc = lane::splat<F>(-1.0f / 3628800);
     pc = pc * a2 + 1.0f / 40320;
     pc = pc * a2 - 1.0f / 720;
     pc = pc * a2 + 1.0f / 24;
@@ -150,6 +153,52 @@ struct Vec3u {
     CA_HD uint32_t operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
 };
 
+// ---- Vectors of lanes: the vectors of code generic over the lane type F (lane.h), Vec2Of<F> and
+// Vec3Of<F>, are Vec2f and Vec3f for F = float and the structs below for Float4 (four vectors,
+// coordinate by coordinate).
+struct Vec2F4 {
+    Float4 x, y;
+};
+struct Vec3F4 {
+    Float4 x, y, z;
+};
+CA_HD_FORCE_INLINE Vec3F4 operator+(const Vec3F4& a, const Vec3F4& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+CA_HD_FORCE_INLINE Vec3F4 operator-(const Vec3F4& a, const Vec3F4& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+CA_HD_FORCE_INLINE Vec3F4 operator-(const Vec3F4& a) { return {-a.x, -a.y, -a.z}; }
+CA_HD_FORCE_INLINE Vec3F4 operator*(const Vec3F4& a, Float4 s) { return {a.x * s, a.y * s, a.z * s}; }
+CA_HD_FORCE_INLINE Vec3F4 operator*(Float4 s, const Vec3F4& a) { return {a.x * s, a.y * s, a.z * s}; }
+CA_HD_FORCE_INLINE Float4 dot(const Vec3F4& a, const Vec3F4& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+
+template <class F>
+struct LaneVectors;
+template <>
+struct LaneVectors<float> {
+    using Vec2 = Vec2f;
+    using Vec3 = Vec3f;
+};
+template <>
+struct LaneVectors<Float4> {
+    using Vec2 = Vec2F4;
+    using Vec3 = Vec3F4;
+};
+template <class F>
+using Vec2Of = typename LaneVectors<F>::Vec2;
+template <class F>
+using Vec3Of = typename LaneVectors<F>::Vec3;
+
+namespace lane {
+template <class F>
+CA_HD_FORCE_INLINE Vec2Of<F> select(MaskOf<F> m, const Vec2Of<F>& a, const Vec2Of<F>& b) {
+    return {select(m, a.x, b.x), select(m, a.y, b.y)};
+}
+template <class F>
+CA_HD_FORCE_INLINE Vec3Of<F> select(MaskOf<F> m, const Vec3Of<F>& a, const Vec3Of<F>& b) {
+    return {select(m, a.x, b.x), select(m, a.y, b.y), select(m, a.z, b.z)};
+}
+/// Lane k of a Vec3F4 as a Vec3f.
+CA_HD_FORCE_INLINE Vec3f extract(const Vec3F4& v, int k) { return {v.x[k], v.y[k], v.z[k]}; }
+}  // namespace lane
+
 /// Axis-aligned bounding box.
 struct Bounds3f {
     Vec3f lo{kInfinity, kInfinity, kInfinity};
@@ -166,20 +215,36 @@ struct Bounds3f {
     }
 };
 
-/// Orthonormal basis around a unit normal (Duff et al. 2017, "Building an Orthonormal Basis,
-/// Revisited"). Local coordinates have the normal as +z.
+/// Tangents s, t that make (s, t, n) an orthonormal basis around the unit normal n (Duff et al.
+/// 2017, "Building an Orthonormal Basis, Revisited", listing 3). Generic over the lane type F.
+template <class F>
+CA_HD_FORCE_INLINE void orthonormalBasis(const Vec3Of<F>& n, Vec3Of<F>& s, Vec3Of<F>& t) {
+    const F sign = lane::copysign(lane::splat<F>(1), n.z);
+    const F a = -1 / (sign + n.z);
+    const F b = n.x * n.y * a;
+    s = Vec3Of<F>{1 + sign * n.x * n.x * a, sign * b, -sign * n.x};
+    t = Vec3Of<F>{b, sign + n.y * n.y * a, -n.y};
+}
+/// v in the frame (s, t, n) and back.
+template <class F>
+CA_HD_FORCE_INLINE Vec3Of<F> frameToLocal(const Vec3Of<F>& s, const Vec3Of<F>& t, const Vec3Of<F>& n,
+                                          const Vec3Of<F>& v) {
+    return Vec3Of<F>{dot(v, s), dot(v, t), dot(v, n)};
+}
+template <class F>
+CA_HD_FORCE_INLINE Vec3Of<F> frameToWorld(const Vec3Of<F>& s, const Vec3Of<F>& t, const Vec3Of<F>& n,
+                                          const Vec3Of<F>& v) {
+    return s * v.x + t * v.y + n * v.z;
+}
+
+/// Orthonormal basis around a unit normal (orthonormalBasis). Local coordinates have the normal
+/// as +z.
 struct Frame {
     Vec3f s, t, n;
     Frame() = default;
-    CA_HD explicit Frame(Vec3f normal) : n(normal) {
-        Float sign = std::copysign(Float(1), n.z);
-        Float a = -1 / (sign + n.z);
-        Float b = n.x * n.y * a;
-        s = Vec3f(1 + sign * n.x * n.x * a, sign * b, -sign * n.x);
-        t = Vec3f(b, sign + n.y * n.y * a, -n.y);
-    }
-    CA_HD Vec3f toLocal(Vec3f v) const { return {dot(v, s), dot(v, t), dot(v, n)}; }
-    CA_HD Vec3f toWorld(Vec3f v) const { return s * v.x + t * v.y + n * v.z; }
+    CA_HD explicit Frame(Vec3f normal) : n(normal) { orthonormalBasis<float>(n, s, t); }
+    CA_HD Vec3f toLocal(Vec3f v) const { return frameToLocal<float>(s, t, n, v); }
+    CA_HD Vec3f toWorld(Vec3f v) const { return frameToWorld<float>(s, t, n, v); }
 };
 
 }  // namespace caustica

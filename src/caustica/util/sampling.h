@@ -13,29 +13,38 @@
 namespace caustica {
 
 /// Concentric map of the square to the unit disk (Shirley and Chiu 1997, "A Low Distortion Map
-/// Between Disk and Square"). Uniform in area: pdf 1/π.
-CA_HD_INLINE Vec2f sampleConcentricDisk(Vec2f u) {
-    const Float x = 2 * u.x - 1, y = 2 * u.y - 1;
-    if (x == 0 && y == 0) return {0, 0};
-    // The point at radius r and angle θ = (π/4)(y/x) (|x| > |y|) or π/2 - (π/4)(x/y): both
-    // angles' sine and cosine come from one in [-π/4, π/4], cos(π/2 - a) = sin a and back.
-    Float s, c;
-    if (std::fabs(x) > std::fabs(y)) {
-        sinCosQuarterPi((kPi / 4) * (y / x), s, c);
-        return {x * c, x * s};
-    }
-    sinCosQuarterPi((kPi / 4) * (x / y), s, c);
-    return {y * s, y * c};
+/// Between Disk and Square"). Uniform in area: pdf 1/π. Generic over the lane type F (lane.h):
+/// both octant cases are one expression, chosen by select.
+template <class F>
+CA_HD_INLINE Vec2Of<F> sampleConcentricDisk(const Vec2Of<F>& u) {
+    const F x = 2 * u.x - 1, y = 2 * u.y - 1;
+    // The point at radius r and angle θ = (π/4)(y/x) (|x| > |y|, r = x) or π/2 - (π/4)(x/y)
+    // (r = y): both angles' sine and cosine come from one in [-π/4, π/4], cos(π/2 - a) = sin a.
+    const MaskOf<F> xMajor = lane::abs(x) > lane::abs(y);
+    const F r = lane::select(xMajor, x, y);
+    F s, c;
+    sinCosQuarterPi((kPi / 4) * (lane::select(xMajor, y, x) / r), s, c);
+    const F zero = lane::splat<F>(0);
+    const MaskOf<F> centre = (x == zero) & (y == zero);  // 0 / 0 above: the centre is (0, 0)
+    return Vec2Of<F>{lane::select(centre, zero, r * lane::select(xMajor, c, s)),
+                     lane::select(centre, zero, r * lane::select(xMajor, s, c))};
 }
+CA_HD_INLINE Vec2f sampleConcentricDisk(Vec2f u) { return sampleConcentricDisk<float>(u); }
 CA_HD_INLINE Float concentricDiskPdf() { return kInvPi; }
 
-/// Cosine-weighted directions on the +z hemisphere (Malley's method): pdf cosθ/π.
-CA_HD_INLINE Vec3f sampleCosineHemisphere(Vec2f u) {
-    const Vec2f d = sampleConcentricDisk(u);
-    const Float z = safeSqrt(1 - d.x * d.x - d.y * d.y);
-    return {d.x, d.y, z};
+/// Cosine-weighted directions on the +z hemisphere (Malley's method): pdf cosθ/π. Generic over
+/// the lane type F.
+template <class F>
+CA_HD_INLINE Vec3Of<F> sampleCosineHemisphere(const Vec2Of<F>& u) {
+    const Vec2Of<F> d = sampleConcentricDisk<F>(u);
+    return Vec3Of<F>{d.x, d.y, lane::safeSqrt(1 - d.x * d.x - d.y * d.y)};
 }
-CA_HD_INLINE Float cosineHemispherePdf(Vec3f w) { return w.z > 0 ? w.z * kInvPi : Float(0); }
+CA_HD_INLINE Vec3f sampleCosineHemisphere(Vec2f u) { return sampleCosineHemisphere<float>(u); }
+template <class F>
+CA_HD_INLINE F cosineHemispherePdf(const Vec3Of<F>& w) {
+    return lane::select(w.z > 0, w.z * kInvPi, lane::splat<F>(0));
+}
+CA_HD_INLINE Float cosineHemispherePdf(Vec3f w) { return cosineHemispherePdf<float>(w); }
 
 /// Uniform directions on the unit sphere: pdf 1/(4π).
 CA_HD_INLINE Vec3f sampleUniformSphere(Vec2f u) {
@@ -112,13 +121,16 @@ CA_HD_INLINE Float discreteCdfPmf(Span<const float> cdf, uint32_t i) {
 /// Veach's power heuristic with β = 2 (Veach 1997, eq. 9.13): the MIS weight of a sample drawn
 /// with pdf `pdfA` when the other strategy would have drawn it with pdf `pdfB`. Robust to
 /// infinite pdfs (delta strategies) and overflow: returns 1 if only pdfA is infinite, 0 if only
-/// pdfB is, ½ if both are, and 0 when pdfA is 0.
-CA_HD_INLINE Float powerHeuristic(Float pdfA, Float pdfB) {
-    const bool infA = std::isinf(pdfA), infB = std::isinf(pdfB);
-    if (infA || infB) return infA ? (infB ? Float(0.5) : Float(1)) : Float(0);
-    if (!(pdfA > 0)) return 0;
-    const Float r = pdfB / pdfA;  // no overflow from squaring large pdfs
-    return 1 / (1 + r * r);
+/// pdfB is, ½ if both are, and 0 when pdfA is 0. Generic over the lane type F.
+template <LaneFloat F>
+CA_HD_INLINE F powerHeuristic(F pdfA, F pdfB) {
+    const MaskOf<F> infA = lane::isInf(pdfA), infB = lane::isInf(pdfB);
+    const F r = pdfB / pdfA;  // no overflow from squaring large pdfs
+    const F zero = lane::splat<F>(0);
+    const F finite = lane::select(pdfA > zero, 1 / (1 + r * r), zero);
+    const F infinite = lane::select(infA, lane::select(infB, lane::splat<F>(0.5f), lane::splat<F>(1)), zero);
+    return lane::select(infA | infB, infinite, finite);
 }
+CA_HD_INLINE Float powerHeuristic(Float pdfA, Float pdfB) { return powerHeuristic<float>(pdfA, pdfB); }
 
 }  // namespace caustica

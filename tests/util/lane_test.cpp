@@ -10,6 +10,8 @@
 #include <limits>
 #include <vector>
 
+#include "caustica/scene/bsdf.h"
+#include "caustica/scene/light.h"
 #include "caustica/util/rng.h"
 #include "caustica/util/sampling.h"
 
@@ -173,6 +175,102 @@ TEST(Lanes, PowerHeuristicMatchesTheScalarFormBitForBit) {
     EXPECT_EQ(powerHeuristic(inf, inf), 0.5f);
     EXPECT_EQ(powerHeuristic(0.0f, 1.0f), 0.0f);
     EXPECT_EQ(powerHeuristic(2.0f, 2.0f), 0.5f);
+}
+
+/// Four Vec3f from three coordinate arrays at i.
+Vec3F4 gather3(const std::vector<float>& x, const std::vector<float>& y, const std::vector<float>& z, size_t i) {
+    return {gather(x, i), gather(y, i), gather(z, i)};
+}
+
+TEST(Lanes, DiffuseBsdfMatchesTheScalarLeafBitForBit) {
+    // Directions on both sides of the surface (z of either sign, and exactly 0), random reflectances.
+    std::vector<float> ox = randomFloats(kRandomCases, 20, -1, 1), oy = randomFloats(kRandomCases, 21, -1, 1),
+                       oz = randomFloats(kRandomCases, 22, -1, 1), ix = randomFloats(kRandomCases, 23, -1, 1),
+                       iy = randomFloats(kRandomCases, 24, -1, 1), iz = randomFloats(kRandomCases, 25, -1, 1),
+                       rr = randomFloats(kRandomCases, 26, 0, 1), ux = randomFloats(kRandomCases, 27, 0, 1),
+                       uy = randomFloats(kRandomCases, 28, 0, 1);
+    oz[0] = 0;
+    iz[1] = 0;
+    oz[2] = -0.0f;
+    iz[3] = std::numeric_limits<float>::quiet_NaN();
+    ux[4] = uy[4] = 0.5f;  // the disk's centre: wi = +z
+    Bsdf diffuse;
+    diffuse.type = BsdfType::Diffuse;
+    for (size_t i = 0; i < ox.size(); i += 4) {
+        const Vec3F4 wo = gather3(ox, oy, oz, i), wi = gather3(ix, iy, iz, i);
+        const Float4 r = gather(rr, i);
+        const SpectrumF4 refl{r, r * 0.5f, r * 0.25f};
+        const SpectrumF4 f = bsdf_detail::diffuseEvalLocal<Float4>(refl, wo, wi);
+        const Float4 pdf = bsdf_detail::diffusePdfLocal<Float4>(wo, wi);
+        Vec3F4 sampled;
+        Float4 sampledPdf;
+        const uint32_t ok = bsdf_detail::diffuseSampleLocal<Float4>(wo, Vec2F4{gather(ux, i), gather(uy, i)}, sampled,
+                                                                     sampledPdf).bits();
+        for (int k = 0; k < 4; ++k) {
+            diffuse.reflectance = lane::extract(refl, k);
+            const Vec3f wo1 = lane::extract(wo, k), wi1 = lane::extract(wi, k);
+            const Spectrum f1 = bsdf_detail::evalLocal(diffuse, wo1, wi1);
+            ASSERT_EQ(bitsOf(f.r[k]), bitsOf(f1.r)) << i + size_t(k);
+            ASSERT_EQ(bitsOf(f.g[k]), bitsOf(f1.g));
+            ASSERT_EQ(bitsOf(f.b[k]), bitsOf(f1.b));
+            ASSERT_EQ(bitsOf(pdf[k]), bitsOf(bsdf_detail::pdfLocal(diffuse, wo1, wi1)));
+            BsdfSample bs;
+            const bool ok1 = bsdf_detail::sampleLocal(diffuse, wo1, 0.5f, Vec2f(ux[i + k], uy[i + k]), bs);
+            ASSERT_EQ((ok >> k) & 1u, uint32_t(ok1)) << i + size_t(k);
+            if (ok1) {
+                const Vec3f s1 = lane::extract(sampled, k);
+                for (int c = 0; c < 3; ++c) ASSERT_EQ(bitsOf(s1[c]), bitsOf(bs.wi[c]));
+                ASSERT_EQ(bitsOf(sampledPdf[k]), bitsOf(bs.pdf));
+            }
+        }
+    }
+}
+
+TEST(Lanes, AreaLightPiecesMatchTheScalarFormsBitForBit) {
+    // Reference points around a parallelogram light, some behind it, one on it, one at its corner.
+    const Vec3f corner(-0.5f, 1.9f, -0.4f), edgeU(1, 0, 0), edgeV(0, 0, 0.8f), normal(0, -1, 0);
+    std::vector<float> px = randomFloats(kRandomCases, 30, -2, 2), py = randomFloats(kRandomCases, 31, -1, 3),
+                       pz = randomFloats(kRandomCases, 32, -2, 2), ux = randomFloats(kRandomCases, 33, 0, 1),
+                       uy = randomFloats(kRandomCases, 34, 0, 1), area = randomFloats(kRandomCases, 35, 0, 2);
+    px[0] = corner.x, py[0] = corner.y, pz[0] = corner.z, ux[0] = uy[0] = 0;  // refP is the sampled point
+    py[1] = corner.y;                                                          // in the light's plane
+    area[2] = 0;
+    area[3] = INFINITY;
+    const Vec3F4 c4{Float4::broadcast(corner.x), Float4::broadcast(corner.y), Float4::broadcast(corner.z)};
+    const Vec3F4 u4{Float4::broadcast(edgeU.x), Float4::broadcast(edgeU.y), Float4::broadcast(edgeU.z)};
+    const Vec3F4 v4{Float4::broadcast(edgeV.x), Float4::broadcast(edgeV.y), Float4::broadcast(edgeV.z)};
+    const Vec3F4 n4{Float4::broadcast(normal.x), Float4::broadcast(normal.y), Float4::broadcast(normal.z)};
+    const Float4 selPdf = Float4::broadcast(0.5f);
+    for (size_t i = 0; i < px.size(); i += 4) {
+        const Vec3F4 refP = gather3(px, py, pz, i);
+        const Vec3F4 p = light_detail::parallelogramPoint<Float4>(c4, u4, v4, Vec2F4{gather(ux, i), gather(uy, i)});
+        const Float4 pdf = light_detail::areaToSolidAngle<Float4>(refP, p, n4, gather(area, i));
+        Vec3F4 wi;
+        Float4 dist, pdfOut;
+        const uint32_t ok = light_detail::areaLightDirection<Float4>(refP, p, pdf, selPdf, wi, dist, pdfOut).bits();
+        for (int k = 0; k < 4; ++k) {
+            const Vec3f refP1 = lane::extract(refP, k);
+            const Vec3f p1 = light_detail::parallelogramPoint<float>(corner, edgeU, edgeV, Vec2f(ux[i + k], uy[i + k]));
+            const Vec3f p4 = lane::extract(p, k);
+            for (int c = 0; c < 3; ++c) ASSERT_EQ(bitsOf(p4[c]), bitsOf(p1[c]));
+            const float pdf1 = light_detail::areaToSolidAngle(refP1, p1, normal, area[i + k]);
+            ASSERT_EQ(bitsOf(pdf[k]), bitsOf(pdf1)) << i + size_t(k);
+            Vec3f wi1;
+            float dist1, pdfOut1;
+            const bool ok1 = light_detail::areaLightDirection<float>(refP1, p1, pdf1, 0.5f, wi1, dist1, pdfOut1);
+            ASSERT_EQ((ok >> k) & 1u, uint32_t(ok1)) << i + size_t(k);
+            if (ok1) {
+                const Vec3f w4 = lane::extract(wi, k);
+                for (int c = 0; c < 3; ++c) ASSERT_EQ(bitsOf(w4[c]), bitsOf(wi1[c]));
+                ASSERT_EQ(bitsOf(dist[k]), bitsOf(dist1));
+                ASSERT_EQ(bitsOf(pdfOut[k]), bitsOf(pdfOut1));
+            }
+        }
+    }
+    // The documented zeros: behind the light, area 0, the reference point on the light.
+    EXPECT_EQ(light_detail::areaToSolidAngle(Vec3f(0, 3, 0), Vec3f(0, 1.9f, 0), normal, 1.0f), 0.0f);
+    EXPECT_EQ(light_detail::areaToSolidAngle(Vec3f(0, 0, 0), Vec3f(0, 1.9f, 0), normal, 0.0f), 0.0f);
+    EXPECT_EQ(light_detail::areaToSolidAngle(corner, corner, normal, 1.0f), 0.0f);
 }
 
 }  // namespace

@@ -224,12 +224,38 @@ CA_HD_INLINE Spectrum plasticDiffuse(const Bsdf& b, Float fo, Float fi) {
     return d * ((1 - fo) * (1 - fi) / sqr(b.etaRatio));
 }
 
+/// The diffuse BSDF in its local frame, generic over the lane type F (util/lane.h): f · cosθi =
+/// R cosθi / π where both directions are above the surface (zero elsewhere, NaN included), its
+/// pdf, and a cosine-weighted sample (valid where wo is above and the pdf positive; its weight is
+/// R).
+template <class F>
+CA_HD_FORCE_INLINE MaskOf<F> diffuseBothAbove(const Vec3Of<F>& wo, const Vec3Of<F>& wi) {
+    const MaskOf<F> woAbove = !(wo.z <= 0), wiAbove = !(wi.z <= 0);  // NaN: not above
+    return woAbove & wiAbove;
+}
+template <class F>
+CA_HD_INLINE SpectrumOf<F> diffuseEvalLocal(const SpectrumOf<F>& reflectance, const Vec3Of<F>& wo,
+                                            const Vec3Of<F>& wi) {
+    const F zero = lane::splat<F>(0);
+    return lane::select<F>(diffuseBothAbove<F>(wo, wi), reflectance * (kInvPi * wi.z), SpectrumOf<F>{zero, zero, zero});
+}
+template <class F>
+CA_HD_INLINE F diffusePdfLocal(const Vec3Of<F>& wo, const Vec3Of<F>& wi) {
+    return lane::select(diffuseBothAbove<F>(wo, wi), cosineHemispherePdf<F>(wi), lane::splat<F>(0));
+}
+template <class F>
+CA_HD_INLINE MaskOf<F> diffuseSampleLocal(const Vec3Of<F>& wo, const Vec2Of<F>& u, Vec3Of<F>& wi, F& pdf) {
+    wi = sampleCosineHemisphere<F>(u);
+    pdf = cosineHemispherePdf<F>(wi);
+    const MaskOf<F> woAbove = !(wo.z <= 0);
+    return woAbove & (pdf > 0);
+}
+
 /// f · cosθi of a non-twosided BSDF in its local frame; zero for delta lobes.
 CA_HD_INLINE Spectrum evalLocal(const Bsdf& b, Vec3f wo, Vec3f wi) {
     switch (b.type) {
         case BsdfType::Diffuse:
-            if (wo.z <= 0 || wi.z <= 0) return {};
-            return b.reflectance * (kInvPi * wi.z);
+            return diffuseEvalLocal<float>(b.reflectance, wo, wi);
         case BsdfType::RoughConductor: {
             if (wo.z <= 0 || wi.z <= 0) return {};
             const MicrofacetDistribution md = microfacetOf(b);
@@ -261,8 +287,7 @@ CA_HD_INLINE Spectrum evalLocal(const Bsdf& b, Vec3f wo, Vec3f wi) {
 CA_HD_INLINE Float pdfLocal(const Bsdf& b, Vec3f wo, Vec3f wi) {
     switch (b.type) {
         case BsdfType::Diffuse:
-            if (wo.z <= 0 || wi.z <= 0) return 0;
-            return cosineHemispherePdf(wi);
+            return diffusePdfLocal<float>(wo, wi);
         case BsdfType::RoughConductor:
             if (wo.z <= 0 || wi.z <= 0) return 0;
             return roughConductorPdf(microfacetOf(b), wo, wi, normalize(wo + wi));
@@ -289,10 +314,8 @@ CA_HD_INLINE bool sampleLocal(const Bsdf& b, Vec3f wo, Float uLobe, Vec2f u, Bsd
     switch (b.type) {
         case BsdfType::Diffuse: {
             if (wo.z <= 0) return false;
-            out.wi = sampleCosineHemisphere(u);
-            out.pdf = cosineHemispherePdf(out.wi);
             out.weight = b.reflectance;  // (R/π) cosθ / (cosθ/π)
-            return out.pdf > 0;
+            return diffuseSampleLocal<float>(wo, u, out.wi, out.pdf);
         }
         case BsdfType::Dielectric: {
             // Mitsuba's smooth dielectric: choose reflection with probability F.

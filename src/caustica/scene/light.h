@@ -81,14 +81,40 @@ CA_HD_INLINE bool sampleDeltaPosition(Vec3f pos, Vec3f refP, Float selPdf, Light
 }
 
 /// Solid-angle pdf of a point `p` with front normal `n` sampled uniformly by area on a surface of
-/// total area `area` (dω = |cosθ| dA / r²); 0 when p faces away from ref.
+/// total area `area` (dω = |cosθ| dA / r²); 0 when p faces away from ref (or area is 0:
+/// finalizeLights has not run). Generic over the lane type F (util/lane.h).
+template <class F>
+CA_HD_INLINE F areaToSolidAngle(const Vec3Of<F>& refP, const Vec3Of<F>& p, const Vec3Of<F>& n, F area) {
+    const Vec3Of<F> d = p - refP;
+    const F d2 = dot(d, d);
+    const F cosL = -dot(d, n) / lane::sqrt(d2);
+    const MaskOf<F> valid = (d2 > 0) & (area > 0) & (cosL > 0);  // else: back side of a one-sided emitter
+    return lane::select(valid, d2 / (cosL * area), lane::splat<F>(0));
+}
 CA_HD_INLINE Float areaToSolidAngle(Vec3f refP, Vec3f p, Vec3f n, Float area) {
-    const Vec3f d = p - refP;
-    const Float d2 = lengthSquared(d);
-    if (!(d2 > 0) || !(area > 0)) return 0;  // area 0: finalizeLights has not run
-    const Float cosL = -dot(d, n) / std::sqrt(d2);
-    if (!(cosL > 0)) return 0;  // back side of a one-sided emitter
-    return d2 / (cosL * area);
+    return areaToSolidAngle<float>(refP, p, n, area);
+}
+
+/// The point corner + u.x edgeU + u.y edgeV of a parallelogram (a rectangle light), generic over
+/// the lane type F.
+template <class F>
+CA_HD_FORCE_INLINE Vec3Of<F> parallelogramPoint(const Vec3Of<F>& corner, const Vec3Of<F>& edgeU,
+                                                const Vec3Of<F>& edgeV, const Vec2Of<F>& u) {
+    return corner + edgeU * u.x + edgeV * u.y;
+}
+
+/// The end of an area-light sample seen from refP (sampleLightIndex): the unit direction `wi` to
+/// the sampled point `p`, its distance and the pdf with the light's selection probability;
+/// false where the solid-angle pdf `pdf` is not positive and finite or p is at refP. Generic
+/// over the lane type F.
+template <class F>
+CA_HD_INLINE MaskOf<F> areaLightDirection(const Vec3Of<F>& refP, const Vec3Of<F>& p, F pdf, F selPdf,
+                                          Vec3Of<F>& wi, F& dist, F& pdfOut) {
+    const Vec3Of<F> d = p - refP;
+    dist = lane::sqrt(dot(d, d));
+    wi = d * (1 / dist);
+    pdfOut = pdf * selPdf;
+    return (pdf > 0) & lane::isFinite(pdf) & (dist > 0);
 }
 
 }  // namespace light_detail
@@ -100,7 +126,7 @@ CA_HD_INLINE Float areaToSolidAngle(Vec3f refP, Vec3f p, Vec3f n, Float area) {
 CA_HD_INLINE bool sampleAreaLightPosition(const SceneView& scene, const Light& light, Vec2f u,
                                           Vec3f& p, Vec3f& n) {
     if (light.isQuad) {  // a parallelogram: the same density, no triangle to pick or rebuild
-        p = light.quadCorner + light.quadEdgeU * u.x + light.quadEdgeV * u.y;
+        p = light_detail::parallelogramPoint<float>(light.quadCorner, light.quadEdgeU, light.quadEdgeV, u);
         n = light.quadNormal;
         return true;
     }
@@ -214,14 +240,8 @@ CA_HD_INLINE bool sampleLightIndex(const SceneView& scene, uint32_t index, Float
         pdf = light_detail::areaToSolidAngle(refP, out.p, out.n, light.area);
     }
     if (!(pdf > 0) || !std::isfinite(pdf)) return false;
-
-    const Vec3f d = out.p - refP;
-    out.dist = length(d);
-    if (!(out.dist > 0)) return false;
-    out.wi = d * (1 / out.dist);
     out.Le = light.radiance;
-    out.pdf = pdf * selPdf;
-    return true;
+    return light_detail::areaLightDirection<float>(refP, out.p, pdf, selPdf, out.wi, out.dist, out.pdf);
 }
 
 /// Samples a light as seen from `refP`: `uSelect` picks the light (uniformly), `u` the point on

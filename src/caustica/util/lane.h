@@ -53,6 +53,7 @@ CA_HD_FORCE_INLINE float copysign(float mag, float sign) { return std::copysign(
 CA_HD_FORCE_INLINE float min(float a, float b) { return a < b ? a : b; }
 CA_HD_FORCE_INLINE float max(float a, float b) { return a > b ? a : b; }
 CA_HD_FORCE_INLINE bool isInf(float a) { return std::fabs(a) == INFINITY; }
+CA_HD_FORCE_INLINE bool isFinite(float a) { return std::fabs(a) < INFINITY; }  // std::isfinite
 
 // ---- F = Float4.
 CA_HD_FORCE_INLINE Float4 select(Mask4 m, Float4 a, Float4 b) { return Float4::select(m, a, b); }
@@ -64,6 +65,7 @@ CA_HD_FORCE_INLINE Float4 copysign(Float4 mag, Float4 sign) { return Float4::cop
 CA_HD_FORCE_INLINE Float4 min(Float4 a, Float4 b) { return Float4::minimum(a, b); }
 CA_HD_FORCE_INLINE Float4 max(Float4 a, Float4 b) { return Float4::maximum(a, b); }
 CA_HD_FORCE_INLINE Mask4 isInf(Float4 a) { return Float4::abs(a) == INFINITY; }
+CA_HD_FORCE_INLINE Mask4 isFinite(Float4 a) { return Float4::abs(a) < INFINITY; }
 
 /// sqrt(max(v, 0)), as caustica::safeSqrt.
 template <class F>

@@ -33,4 +33,36 @@ CA_HD_INLINE Spectrum operator/(Spectrum a, Float s) { Float inv = 1 / s; return
 CA_HD_INLINE Spectrum operator/(Spectrum a, Spectrum b) { return {a.r / b.r, a.g / b.g, a.b / b.b}; }
 CA_HD_INLINE Spectrum sqrt(Spectrum a) { return {std::sqrt(a.r), std::sqrt(a.g), std::sqrt(a.b)}; }
 
+/// Four spectra, channel by channel: SpectrumOf<Float4> of code generic over the lane type F
+/// (util/lane.h; SpectrumOf<float> is Spectrum).
+struct SpectrumF4 {
+    Float4 r, g, b;
+};
+CA_HD_FORCE_INLINE SpectrumF4 operator+(const SpectrumF4& a, const SpectrumF4& b) { return {a.r + b.r, a.g + b.g, a.b + b.b}; }
+CA_HD_FORCE_INLINE SpectrumF4 operator*(const SpectrumF4& a, const SpectrumF4& b) { return {a.r * b.r, a.g * b.g, a.b * b.b}; }
+CA_HD_FORCE_INLINE SpectrumF4 operator*(const SpectrumF4& a, Float4 s) { return {a.r * s, a.g * s, a.b * s}; }
+CA_HD_FORCE_INLINE SpectrumF4 operator*(Float4 s, const SpectrumF4& a) { return {a.r * s, a.g * s, a.b * s}; }
+
+template <class F>
+struct LaneSpectrum;
+template <>
+struct LaneSpectrum<float> {
+    using Type = Spectrum;
+};
+template <>
+struct LaneSpectrum<Float4> {
+    using Type = SpectrumF4;
+};
+template <class F>
+using SpectrumOf = typename LaneSpectrum<F>::Type;
+
+namespace lane {
+template <class F>
+CA_HD_FORCE_INLINE SpectrumOf<F> select(MaskOf<F> m, const SpectrumOf<F>& a, const SpectrumOf<F>& b) {
+    return {select(m, a.r, b.r), select(m, a.g, b.g), select(m, a.b, b.b)};
+}
+/// Lane k of a SpectrumF4 as a Spectrum.
+CA_HD_FORCE_INLINE Spectrum extract(const SpectrumF4& s, int k) { return {s.r[k], s.g[k], s.b[k]}; }
+}  // namespace lane
+
 }  // namespace caustica

@@ -34,20 +34,26 @@ std::vector<float> randomFloats(int n, uint64_t seed, float lo, float hi) {
     return v;
 }
 
+/// Appends the pairs `cases` to (a, b), then (pad, pad) until both hold whole groups of four.
+template <size_t N>
+void appendCases(std::vector<float>& a, std::vector<float>& b, const float (&cases)[N][2], float pad) {
+    for (const auto& c : cases) {
+        a.push_back(c[0]);
+        b.push_back(c[1]);
+    }
+    while (a.size() % 4 != 0) {
+        a.push_back(pad);
+        b.push_back(pad);
+    }
+}
+
 /// Random u in [0, 1)² followed by the warps' edge cases.
 void unitSquareCases(std::vector<float>& ux, std::vector<float>& uy) {
     ux = randomFloats(kRandomCases, 7, 0, 1);
     uy = randomFloats(kRandomCases, 8, 0, 1);
     const float edges[][2] = {{0.5f, 0.5f}, {0, 0}, {0.25f, 0.25f}, {0.75f, 0.25f}, {0.5f, 0},
                               {0, 0.5f},    {kOneMinusEpsilon, kOneMinusEpsilon}, {0.5f, 0.75f}};
-    for (const auto& e : edges) {
-        ux.push_back(e[0]);
-        uy.push_back(e[1]);
-    }
-    while (ux.size() % 4 != 0) {
-        ux.push_back(0.5f);
-        uy.push_back(0.5f);
-    }
+    appendCases(ux, uy, edges, 0.5f);
 }
 
 TEST(Lanes, Float4OperationsRoundAsTheirScalarForms) {
@@ -156,14 +162,7 @@ TEST(Lanes, PowerHeuristicMatchesTheScalarFormBitForBit) {
     const float inf = INFINITY, nan = std::numeric_limits<float>::quiet_NaN();
     const float special[][2] = {{inf, 1}, {1, inf}, {inf, inf}, {0, 1}, {0, 0}, {1, 0}, {-1, 2}, {nan, 1},
                                 {1, nan}, {1e30f, 1e-30f}, {1e-30f, 1e30f}, {0, inf}};
-    for (const auto& s : special) {
-        a.push_back(s[0]);
-        b.push_back(s[1]);
-    }
-    while (a.size() % 4 != 0) {
-        a.push_back(1);
-        b.push_back(1);
-    }
+    appendCases(a, b, special, 1.0f);
     for (size_t i = 0; i < a.size(); i += 4) {
         const Float4 w = powerHeuristic<Float4>(gather(a, i), gather(b, i));
         for (int k = 0; k < 4; ++k)

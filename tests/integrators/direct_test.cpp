@@ -63,9 +63,7 @@ Scene makeScene(int size, bool pointLight, bool onlyPointLight = false, bool smo
     scene.shapes[addSphere(scene, {-0.45f, -0.7f, 3.0f}, 0.3f)].bsdf = smoothOnly ? 0 : 4;
     scene.shapes[addSphere(scene, {-0.2f, -0.75f, 1.8f}, 0.25f)].bsdf = 2;
     finalizeLights(scene);
-    scene.camera.width = scene.film.width = size;
-    scene.camera.height = scene.film.height = size;
-    scene.camera.tanHalfX = scene.camera.tanHalfY = 0.6f;
+    setTestCamera(scene, size, size);
     return scene;
 }
 

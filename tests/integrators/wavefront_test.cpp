@@ -2,7 +2,8 @@
 // scene built in code (diffuse box open to an environment, area and point lights, glass and metal
 // spheres) every sample of a pass must be bit-identical between the two, for both ray-tracing
 // backends, for the max_depth / rr_depth / hide_emitters variants, for any chunking of the pass
-// and any thread count, and both must count the same rays.
+// and any thread count, and both must count the same rays; and so on a box lit only by
+// rectangles, where the CPU wavefront shades diffuse vertices four at a time.
 #include <gtest/gtest.h>
 
 #include <tbb/task_arena.h>
@@ -13,6 +14,7 @@
 #include "caustica/accel/accel.h"
 #include "caustica/integrators/pass_driver.h"
 #include "integrators/path_settings_variants.h"
+#include "integrators/rectangle_lit_scene.h"
 #include "scene/scene_builder.h"
 
 namespace caustica::test {
@@ -50,9 +52,7 @@ Scene makeTestScene(int size) {
     addPointLight(scene, {0.5f, 0.5f, 3.0f}, Spectrum(0.5f));
     addConstantLight(scene, Spectrum(0.3f, 0.4f, 0.6f));
     finalizeLights(scene);
-    scene.camera.width = scene.film.width = size;
-    scene.camera.height = scene.film.height = size;
-    scene.camera.tanHalfX = scene.camera.tanHalfY = 0.6f;
+    setTestCamera(scene, size, size);
     return scene;
 }
 
@@ -91,8 +91,9 @@ double totalRadiance(const PassResult& r) {
     return sum;
 }
 
-TEST(Wavefront, EverySampleEqualsTheMegakernels) {
-    const Scene scene = makeTestScene(20);
+/// Every sample of the wavefront equals the megakernel's, for both backends and every settings
+/// variant, and so does the number of rays.
+void expectEverySampleOfTheMegakernel(const Scene& scene) {
     for (AccelKind kind : {AccelKind::Embree, AccelKind::Bvh}) {
         const Accel accel(scene, kind);
         for (const PathSettings& settings : pathSettingsVariants()) {
@@ -111,6 +112,8 @@ TEST(Wavefront, EverySampleEqualsTheMegakernels) {
         }
     }
 }
+
+TEST(Wavefront, EverySampleEqualsTheMegakernels) { expectEverySampleOfTheMegakernel(makeTestScene(20)); }
 
 TEST(Wavefront, ChunkingAndThreadCountDoNotChangeTheSamples) {
     const Scene scene = makeTestScene(16);
@@ -134,6 +137,17 @@ TEST(Wavefront, ManyChunksOnTwoThreadsEqualTheMegakernel) {
     PassResult wave = render(scene, accel, settings, true, kWavefrontMaxPaths, 2);
     EXPECT_TRUE(sameBits(mega, wave));
     EXPECT_EQ(mega.rays, wave.rays);
+}
+
+TEST(Wavefront, ShadingFourPathsAtATimeKeepsEverySample) {
+    // Lights that are all rectangles: a CPU thread's shade stage takes the diffuse vertices four
+    // at a time (shade_lanes.h); the megakernel shades every path alone.
+    const Scene scene = makeRectangleLitScene(20);
+    expectEverySampleOfTheMegakernel(scene);
+    const Accel accel(scene, AccelKind::Embree);
+    const PathSettings settings;
+    EXPECT_TRUE(sameBits(render(scene, accel, settings, false), render(scene, accel, settings, true, 37, 2)))
+        << "chunks of 37 paths on two threads";
 }
 
 TEST(Wavefront, ReportsItsMemoryPerPath) {

@@ -72,6 +72,14 @@ inline uint32_t addCylinder(Scene& scene, Vec3f base, Vec3f axis, Float radius, 
                              makeCylinder(base, axis, radius, length), flipNormals);
 }
 
+/// The camera at the origin looking along +z (the default), its film `width` x `height`, with
+/// tan(half the field of view) `tanHalf` on both axes.
+inline void setTestCamera(Scene& scene, int width, int height, Float tanHalf = 0.6f) {
+    scene.camera.width = scene.film.width = width;
+    scene.camera.height = scene.film.height = height;
+    scene.camera.tanHalfX = scene.camera.tanHalfY = tanHalf;
+}
+
 inline uint32_t addAreaLight(Scene& scene, uint32_t shape, Spectrum radiance) {
     Light l;
     l.type = LightType::Area;

@@ -35,6 +35,16 @@ struct BsdfSample {
     bool delta = false;
 };
 
+/// BsdfSample of code generic over the lane type F (util/lane.h).
+template <class F>
+struct LaneBsdfSample;
+template <>
+struct LaneBsdfSample<float> {
+    using Type = BsdfSample;
+};
+template <class F>
+using BsdfSampleOf = typename LaneBsdfSample<F>::Type;
+
 namespace bsdf_detail {
 
 /// The PrincipledParams field of a principled BsdfParam (Roughness ... Flatness).

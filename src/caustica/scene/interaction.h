@@ -19,16 +19,26 @@ struct SurfaceInteraction {
     TextureView textures;  // the scene's textures, for BSDF parameters (texture.h)
 };
 
-/// Mitsuba's shading frame: n = ns, s = dp/du made orthogonal to n (Gram–Schmidt), t = n × s;
-/// without a usable dp/du, Mitsuba's coordinate_system(ns) (Frame(ns)).
+/// The axes s, t of Mitsuba's shading frame around the unit shading normal ns: s = dp/du made
+/// orthogonal to ns (Gram–Schmidt), t = ns × s; without a usable dp/du, Mitsuba's
+/// coordinate_system(ns) (Frame(ns)). Generic over the lane type F (util/lane.h).
+template <LaneFloat F>
+CA_HD_FORCE_INLINE void shadingFrameAxes(const Vec3Of<F>& ns, const Vec3Of<F>& dpdu, Vec3Of<F>& s, Vec3Of<F>& t) {
+    const Vec3Of<F> g = dpdu - ns * dot(ns, dpdu);
+    const F len2 = dot(g, g);
+    const MaskOf<F> usable = (len2 > Float(1e-30)) & (len2 < Float(1e30));
+    Vec3Of<F> fs{}, ft{};
+    if (!lane::all(usable)) orthonormalBasis<F>(ns, fs, ft);
+    const Vec3Of<F> gs = g * (1 / lane::sqrt(len2));
+    s = lane::select<F>(usable, gs, fs);
+    t = lane::select<F>(usable, cross(ns, gs), ft);
+}
+
+/// Mitsuba's shading frame at si (shadingFrameAxes of si.ns and si.dpdu).
 CA_HD_INLINE Frame shadingFrame(const SurfaceInteraction& si) {
-    const Vec3f s = si.dpdu - si.ns * dot(si.ns, si.dpdu);
-    const Float len2 = lengthSquared(s);
-    if (!(len2 > Float(1e-30)) || !(len2 < Float(1e30))) return Frame(si.ns);
     Frame f;
     f.n = si.ns;
-    f.s = s * (1 / std::sqrt(len2));
-    f.t = cross(f.n, f.s);
+    shadingFrameAxes<float>(si.ns, si.dpdu, f.s, f.t);
     return f;
 }
 

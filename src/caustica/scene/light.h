@@ -24,6 +24,16 @@ struct LightSample {
     uint32_t light = 0;
 };
 
+/// LightSample of code generic over the lane type F (util/lane.h).
+template <class F>
+struct LaneLightSample;
+template <>
+struct LaneLightSample<float> {
+    using Type = LightSample;
+};
+template <class F>
+using LightSampleOf = typename LaneLightSample<F>::Type;
+
 namespace light_detail {
 
 /// Uniform light selection (as Mitsuba's default emitter sampling).

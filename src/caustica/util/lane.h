@@ -43,6 +43,12 @@ CA_HD_FORCE_INLINE F splat(float f) {
         return F::broadcast(f);
 }
 
+/// A mask with every lane false.
+template <class F>
+CA_HD_FORCE_INLINE MaskOf<F> none() {
+    return splat<F>(0) != splat<F>(0);
+}
+
 // ---- F = float: the plain expressions (min/max as caustica::min/max).
 CA_HD_FORCE_INLINE float select(bool m, float a, float b) { return m ? a : b; }
 CA_HD_FORCE_INLINE bool any(bool m) { return m; }

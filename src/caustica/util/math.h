@@ -168,6 +168,9 @@ CA_HD_FORCE_INLINE Vec3F4 operator-(const Vec3F4& a) { return {-a.x, -a.y, -a.z}
 CA_HD_FORCE_INLINE Vec3F4 operator*(const Vec3F4& a, Float4 s) { return {a.x * s, a.y * s, a.z * s}; }
 CA_HD_FORCE_INLINE Vec3F4 operator*(Float4 s, const Vec3F4& a) { return {a.x * s, a.y * s, a.z * s}; }
 CA_HD_FORCE_INLINE Float4 dot(const Vec3F4& a, const Vec3F4& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+CA_HD_FORCE_INLINE Vec3F4 cross(const Vec3F4& a, const Vec3F4& b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
 
 template <class F>
 struct LaneVectors;

@@ -56,6 +56,16 @@ struct LaneSpectrum<Float4> {
 template <class F>
 using SpectrumOf = typename LaneSpectrum<F>::Type;
 
+/// Spectrum::isBlack and Spectrum::maxValue, generic over the lane type F.
+template <class F>
+CA_HD_FORCE_INLINE MaskOf<F> isBlack(const SpectrumOf<F>& s) {
+    return (s.r == 0) & (s.g == 0) & (s.b == 0);
+}
+template <class F>
+CA_HD_FORCE_INLINE F maxValue(const SpectrumOf<F>& s) {
+    return lane::max(s.r, lane::max(s.g, s.b));
+}
+
 namespace lane {
 template <class F>
 CA_HD_FORCE_INLINE SpectrumOf<F> select(MaskOf<F> m, const SpectrumOf<F>& a, const SpectrumOf<F>& b) {

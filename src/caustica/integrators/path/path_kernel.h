@@ -83,84 +83,147 @@ CA_HD_INLINE void missPath(const SceneView& scene, PathState& path, const PathSe
     }
 }
 
-/// The path's ray hit `hit`: adds the emission found there (MIS-weighted against NEE), draws one
-/// NEE sample (returned in `shadow` when `*hasShadow`, to be tested and then given to
-/// addShadowContribution before the path's next step), samples the BSDF to continue the path and
-/// plays Russian roulette (Mitsuba 3: survival probability min(max(β)·η², 0.95)). Returns whether
-/// the path continues along `path.ray`. Draws 1+2 (NEE) + 1+2 (BSDF) + 1 (roulette) numbers per
+/// One path's vertex as shadeVertex sees it (F = float): the path, its interaction, sampler and
+/// shadow ray, and the scene's BSDF, emitters and lights through their scalar functions. Its
+/// writers (addRadiance, setShadow, advance, scaleThroughput) are called only where their mask
+/// is set, which for one path means always.
+template <class Sampler>
+struct ScalarVertex {
+    using F = float;
+    const SceneView& scene;
+    PathState& path;
+    const SurfaceInteraction& si;
+    Sampler& sampler;
+    ShadowRay& shadow;
+    bool& hasShadow;
+
+    CA_HD_INLINE Vec3f rayDirection() const { return path.ray.d; }
+    CA_HD_INLINE int32_t lightIndex() const { return scene.shapes[si.shape].light; }
+    /// An emitter hit that counts (emitters seen directly render black with hide_emitters).
+    CA_HD_INLINE bool emitterSeen(const PathSettings& settings) const {
+        const bool visibleEmitter = !(path.depth == 0 && settings.hideEmitters);
+        return lightIndex() >= 0 && visibleEmitter;
+    }
+    CA_HD_INLINE Spectrum emitted(Vec3f wo) const { return emittedRadiance(scene, si, wo); }
+    CA_HD_INLINE bool prevDelta() const { return path.prevBsdfDelta; }
+    /// The MIS weight of the emission found by the BSDF-sampled ray (1 after a delta bounce).
+    CA_HD_INLINE Float emissionWeight() const {
+        return path.prevBsdfDelta ? 1
+                                  : powerHeuristic(path.prevBsdfPdf,
+                                                   pdfAreaLight(scene, uint32_t(lightIndex()), path.prevP, si));
+    }
+    CA_HD_INLINE const Spectrum& throughput() const { return path.throughput; }
+    CA_HD_INLINE void addRadiance(bool, const Spectrum& l) { path.radiance += l; }
+    CA_HD_INLINE bool belowMaxDepth(const PathSettings& settings) const { return path.depth + 1 < maxDepthOf(settings); }
+    CA_HD_INLINE uint32_t bsdfId() const { return scene.shapes[si.shape].bsdf; }
+    CA_HD_INLINE bool deltaBsdf() const { return isDeltaBsdf(scene.bsdfs, bsdfId()); }
+    CA_HD_INLINE BsdfAtVertex prepareBsdf(Vec3f wo) const { return BsdfAtVertex(scene.bsdfs, bsdfId(), si, wo); }
+    CA_HD_INLINE Float get1D(bool) { return sampler.get1D(); }
+    CA_HD_INLINE Vec2f get2D(bool) { return sampler.get2D(); }
+    CA_HD_INLINE bool sampleLight(Float uSelect, Vec2f uLight, LightSample& ls) const {
+        return caustica::sampleLight(scene, si.p, uSelect, uLight, ls);
+    }
+    CA_HD_INLINE void setShadow(bool, const LightSample& ls, const Spectrum& contribution) {
+        shadow.ray = ls.dist < kInfinity ? spawnRayTo(si.p, si.ng, ls.p, ls.n) : spawnRay(si.p, si.ng, ls.wi);
+        shadow.contribution = contribution;
+        hasShadow = true;
+    }
+    CA_HD_INLINE void advance(bool, const BsdfSample& bs) {
+        path.throughput *= bs.weight;
+        path.etaScale *= bs.eta;
+        path.prevBsdfPdf = bs.pdf;
+        path.prevBsdfDelta = bs.delta;
+        path.prevP = si.p;
+        spawnRayInto(path.ray, si.p, si.ng, bs.wi);
+        ++path.depth;
+    }
+    CA_HD_INLINE bool atLeastRrDepth(const PathSettings& settings) const {
+        return path.depth >= uint32_t(settings.rrDepth);
+    }
+    CA_HD_INLINE Float etaScale() const { return path.etaScale; }
+    CA_HD_INLINE void scaleThroughput(bool, Float s) { path.throughput *= s; }
+};
+
+/// The path's ray hit a surface (the vertex `v`): adds the emission found there (MIS-weighted
+/// against NEE), draws one NEE sample (`v.setShadow`: a shadow ray to test and the contribution
+/// to add if it is unoccluded, addShadowContribution), samples the BSDF to continue the path and
+/// plays Russian roulette (Mitsuba 3: survival probability min(max(β)·η², 0.95)). Returns where
+/// the path continues along its new ray. Draws 1+2 (NEE) + 1+2 (BSDF) + 1 (roulette) numbers per
 /// bounce, the NEE ones even at delta surfaces (a fixed layout per bounce helps Metropolis).
-/// shadeHitAt: the same step at an interaction the caller already built (computeInteraction of
+/// Generic over the vertex V: one path (ScalarVertex, F = float: every GPU thread, and the CPU
+/// where vertices are not grouped) or several side by side (V::F a lane type, masks where the
+/// scalar form returns early), the same operations in the same order either way.
+template <class V>
+CA_HD_INLINE MaskOf<typename V::F> shadeVertex(V& v, const PathSettings& settings) {
+    using F = typename V::F;
+    using M = MaskOf<F>;
+    const Vec3Of<F> d = v.rayDirection();
+    const Vec3Of<F> wo = -(d * (1 / lane::sqrt(dot(d, d))));  // -normalize(d)
+
+    // ---- Emission found by the BSDF-sampled (or camera) ray, MIS-weighted against NEE.
+    const M emits = v.emitterSeen(settings);
+    if (lane::any(emits)) {
+        const SpectrumOf<F> le = v.emitted(wo);
+        const M found = emits & !isBlack<F>(le);
+        if (lane::any(found)) v.addRadiance(found, v.throughput() * le * v.emissionWeight());
+    }
+    M alive = v.belowMaxDepth(settings);
+    if (!lane::any(alive)) return alive;
+
+    const auto bsdf = v.prepareBsdf(wo);  // resolved once for NEE and sampling
+
+    // ---- Next-event estimation (skipped for purely specular surfaces; its numbers drawn anyway,
+    // to keep the random-number layout of every bounce the same, useful to Metropolis).
+    const F uSelect = v.get1D(alive);
+    const Vec2Of<F> uLight = v.get2D(alive);
+    M lit = alive & !v.deltaBsdf();
+    if (lane::any(lit)) {
+        LightSampleOf<F> ls;
+        lit = lit & v.sampleLight(uSelect, uLight, ls);
+        lit = lit & (ls.pdf > 0) & !isBlack<F>(ls.Le);
+        if (lane::any(lit)) {
+            F bsdfPdf;
+            const SpectrumOf<F> f = bsdf.evalPdf(ls.wi, bsdfPdf);
+            lit = lit & !isBlack<F>(f);
+            if (lane::any(lit)) {
+                const F w = lane::select(ls.delta, lane::splat<F>(1), powerHeuristic<F>(ls.pdf, bsdfPdf));
+                v.setShadow(lit, ls, v.throughput() * f * ls.Le * (w / ls.pdf));
+            }
+        }
+    }
+
+    // ---- BSDF sampling: continue the path.
+    const F uLobe = v.get1D(alive);
+    const Vec2Of<F> uDir = v.get2D(alive);
+    BsdfSampleOf<F> bs;
+    alive = alive & bsdf.sample(uLobe, uDir, bs);
+    if (!lane::any(alive)) return alive;
+    v.advance(alive, bs);
+
+    // ---- Russian roulette (Mitsuba 3: survival probability min(max(β)·η², 0.95)).
+    const F throughputMax = maxValue<F>(v.throughput());
+    alive = alive & (throughputMax > 0);
+    if (!lane::any(alive)) return alive;
+    const F uRoulette = v.get1D(alive);
+    const M roulette = alive & v.atLeastRrDepth(settings);
+    if (lane::any(roulette)) {
+        const F q = lane::min(throughputMax * v.etaScale() * v.etaScale(), lane::splat<F>(0.95f));
+        alive = alive & !(roulette & (uRoulette >= q));
+        const M survivors = roulette & alive;
+        if (lane::any(survivors)) v.scaleThroughput(survivors, 1 / q);
+    }
+    return alive;
+}
+
+/// shadeVertex of one path at an interaction the caller already built (computeInteraction of
 /// path.ray and its hit), so that a caller that keeps the interaction does not build it twice.
+/// `hasShadow`: whether `shadow` holds an NEE sample to test.
 template <class Sampler>
 CA_HD_INLINE bool shadeHitAt(const SceneView& scene, PathState& path, const SurfaceInteraction& si, Sampler& sampler,
                              const PathSettings& settings, ShadowRay& shadow, bool& hasShadow) {
     hasShadow = false;
-    const uint32_t maxDepth = maxDepthOf(settings);
-    const Vec3f wo = -normalize(path.ray.d);
-
-    // ---- Emission found by the BSDF-sampled (or camera) ray, MIS-weighted against NEE.
-    const bool visibleEmitter = !(path.depth == 0 && settings.hideEmitters);
-    const int32_t lightIndex = scene.shapes[si.shape].light;
-    if (lightIndex >= 0 && visibleEmitter) {
-        Spectrum le = emittedRadiance(scene, si, wo);
-        if (!le.isBlack()) {
-            Float w = path.prevBsdfDelta
-                          ? 1
-                          : powerHeuristic(path.prevBsdfPdf,
-                                           pdfAreaLight(scene, uint32_t(lightIndex), path.prevP, si));
-            path.radiance += path.throughput * le * w;
-        }
-    }
-    if (path.depth + 1 >= maxDepth) return false;
-
-    const uint32_t bsdf = scene.shapes[si.shape].bsdf;
-    const BsdfAtVertex bsdfAt(scene.bsdfs, bsdf, si, wo);  // resolved once for NEE and sampling
-
-    // ---- Next-event estimation (skipped for purely specular surfaces).
-    if (!isDeltaBsdf(scene.bsdfs, bsdf)) {
-        Float uSelect = sampler.get1D();
-        Vec2f uLight = sampler.get2D();
-        LightSample ls;
-        if (sampleLight(scene, si.p, uSelect, uLight, ls) && ls.pdf > 0 && !ls.Le.isBlack()) {
-            Float bsdfPdf;
-            const Spectrum f = bsdfAt.evalPdf(ls.wi, bsdfPdf);
-            if (!f.isBlack()) {
-                shadow.ray = ls.dist < kInfinity ? spawnRayTo(si.p, si.ng, ls.p, ls.n)
-                                                 : spawnRay(si.p, si.ng, ls.wi);
-                Float w = ls.delta ? 1 : powerHeuristic(ls.pdf, bsdfPdf);
-                shadow.contribution = path.throughput * f * ls.Le * (w / ls.pdf);
-                hasShadow = true;
-            }
-        }
-    } else {
-        // Keep the random-number layout of every bounce the same (useful to Metropolis).
-        sampler.get1D();
-        sampler.get2D();
-    }
-
-    // ---- BSDF sampling: continue the path.
-    Float uLobe = sampler.get1D();
-    Vec2f uDir = sampler.get2D();
-    BsdfSample bs;
-    if (!bsdfAt.sample(uLobe, uDir, bs)) return false;
-    path.throughput *= bs.weight;
-    path.etaScale *= bs.eta;
-    path.prevBsdfPdf = bs.pdf;
-    path.prevBsdfDelta = bs.delta;
-    path.prevP = si.p;
-    spawnRayInto(path.ray, si.p, si.ng, bs.wi);
-    ++path.depth;
-
-    // ---- Russian roulette (Mitsuba 3: survival probability min(max(β)·η², 0.95)).
-    const Float throughputMax = path.throughput.maxValue();
-    if (!(throughputMax > 0)) return false;
-    Float uRoulette = sampler.get1D();
-    if (path.depth >= uint32_t(settings.rrDepth)) {
-        Float q = min(throughputMax * path.etaScale * path.etaScale, Float(0.95));
-        if (uRoulette >= q) return false;
-        path.throughput *= 1 / q;
-    }
-    return true;
+    ScalarVertex<Sampler> v{scene, path, si, sampler, shadow, hasShadow};
+    return shadeVertex(v, settings);
 }
 
 template <class Sampler>

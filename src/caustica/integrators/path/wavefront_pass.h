@@ -8,7 +8,9 @@
 // WavefrontSchedule: a GPU traces one large chunk at a time, each stage a grid over the chunk's
 // queue; a CPU traces one small chunk per thread at once, each stage a serial loop over the
 // chunk (SerialExec), so that the chunk's path state stays in that core's L2 cache between
-// stages and no stage waits for the other threads. The stage code is the same for both.
+// stages and no stage waits for the other threads. The stage code is the same for both; a CPU
+// thread's shade stage takes four paths at a time through the same shadeVertex where their
+// vertices allow it (shade_lanes.h), with the same bits.
 //
 // AOVs (shareFirstHits) are written from the first extend stage's hits of the camera rays, so a
 // render with AOVs traces each camera ray once, as the megakernel's does.
@@ -18,6 +20,7 @@
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 #include <utility>
 
 #include "caustica/accel/device_scene.h"
@@ -26,6 +29,7 @@
 #include "caustica/integrators/megakernel_pass.h"
 #include "caustica/integrators/pass_driver.h"
 #include "caustica/integrators/path/path_kernel.h"
+#include "caustica/integrators/path/shade_lanes.h"
 #include "caustica/parallel/buffer.h"
 #include "caustica/parallel/compact.h"
 #include "caustica/integrators/hit_prefetch.h"
@@ -67,6 +71,70 @@ void aovStage(Exec exec, const SceneView& scene, const Intersector& accel, const
     });
 }
 
+/// The shade stage's prefetch at queue position j: the hit data of the paths `prefetch` (and twice
+/// as many) entries ahead (0: none).
+CA_HD_INLINE void prefetchAhead(const SceneView& scene, const Paths& w, const uint32_t* liveQ, size_t liveCount,
+                                size_t j, size_t prefetch) {
+    if (prefetch == 0) return;
+    if (j + 2 * prefetch < liveCount) prefetchTriangle(scene, w.hit[liveQ[j + 2 * prefetch]]);
+    if (j + prefetch < liveCount) prefetchVertices(scene, w.hit[liveQ[j + prefetch]]);
+}
+
+/// The shade stage of path i at queue position j: shadeHit where its ray hit (w.alive[j]), the
+/// miss of the scene where not; w.alive[j] and w.hasShadow[j] say what follows.
+CA_HD_INLINE void shadeEntry(const SceneView& scene, const PathSettings& settings, const Paths& w, uint32_t i,
+                             size_t j) {
+    bool shadowRay = false;
+    if (w.alive[j])
+        w.alive[j] = shadeHit(scene, w.state[i], w.hit[i], w.sampler[i], settings, w.shadow[i], shadowRay);
+    else
+        missPath(scene, w.state[i], settings);
+    w.hasShadow[j] = shadowRay;
+}
+
+#if CA_FLOAT4_SSE
+/// The shade stage on one host thread with four paths at a time: the entries whose vertex a lane
+/// vertex can take (diffuseQuadEligible) are gathered four by four and shaded by
+/// shadeDiffuseQuad4, the others (and the last gathered, fewer than four) by shadeEntry. Each
+/// path is shaded once, with its own sampler, so the order does not change any path's bits.
+inline void shadeStageByFour(const SceneView& scene, const PathSettings& settings, const Paths& w,
+                             const uint32_t* liveQ, size_t liveCount, size_t prefetch) {
+    size_t gathered[4];
+    int count = 0;
+    for (size_t j = 0; j < liveCount; ++j) {
+        prefetchAhead(scene, w, liveQ, liveCount, j, prefetch);
+        const uint32_t i = liveQ[j];
+        if (!(w.alive[j] && diffuseQuadEligible(scene, w.state[i], w.hit[i], settings))) {
+            shadeEntry(scene, settings, w, i, j);
+            continue;
+        }
+        gathered[count++] = j;
+        if (count < 4) continue;
+        count = 0;
+        PathState* paths[4];
+        SurfaceInteraction interactions[4];
+        const SurfaceInteraction* si[4];
+        IndependentSampler* samplers[4];
+        ShadowRay* shadows[4];
+        bool hasShadow[4];
+        for (int k = 0; k < 4; ++k) {
+            const uint32_t id = liveQ[gathered[k]];
+            paths[k] = &w.state[id];
+            interactions[k] = computeInteraction(scene, w.state[id].ray, w.hit[id]);
+            si[k] = &interactions[k];
+            samplers[k] = &w.sampler[id];
+            shadows[k] = &w.shadow[id];
+        }
+        const uint32_t alive = shadeDiffuseQuad4(scene, paths, si, samplers, settings, shadows, hasShadow);
+        for (int k = 0; k < 4; ++k) {
+            w.alive[gathered[k]] = (alive >> k) & 1u;
+            w.hasShadow[gathered[k]] = hasShadow[k];
+        }
+    }
+    for (int k = 0; k < count; ++k) shadeEntry(scene, settings, w, liveQ[gathered[k]], gathered[k]);
+}
+#endif
+
 /// Traces the paths of pass slots [begin, begin + n) to completion; returns the rays traced.
 /// `aovs.values` non-null: also writes the AOVs of their camera rays (aovStage).
 /// `prefetch` > 0: the shade stage prefetches the hit data of the paths that many (and twice as
@@ -95,6 +163,9 @@ uint64_t traceChunk(Exec exec, const SceneView& scene, const Intersector& accel,
     if (aovs.values != nullptr && liveCount == 0)  // no segment traced (max_depth 0)
         aovStage(exec, scene, accel, aovs, begin, samples, w, nullptr, n, false);
     bool firstBounce = true;
+#if CA_FLOAT4_SSE
+    const bool quadLights = std::is_same_v<Exec, SerialExec> && allLightsAreQuads(scene);
+#endif
 
     while (liveCount > 0) {
         const uint32_t* liveQ = live;
@@ -122,19 +193,23 @@ uint64_t traceChunk(Exec exec, const SceneView& scene, const Intersector& accel,
         firstBounce = false;
 
         // ---- Shade: emission, NEE sample, BSDF sample, roulette (or the miss of the scene).
-        launch(exec, "wavefront.shade", liveCount, [=] CA_HD(size_t j) {
-            const uint32_t i = liveQ[j];
-            if (prefetch > 0) {
-                if (j + 2 * prefetch < liveCount) prefetchTriangle(scene, w.hit[liveQ[j + 2 * prefetch]]);
-                if (j + prefetch < liveCount) prefetchVertices(scene, w.hit[liveQ[j + prefetch]]);
+        // A CPU thread shades four paths at a time where it can (shadeStageByFour), the same
+        // shadeVertex over lanes; a GPU runs one path per thread.
+        bool shadedByFour = false;
+#if CA_FLOAT4_SSE
+        if constexpr (std::is_same_v<Exec, SerialExec>) {
+            if (quadLights) {
+                shadeStageByFour(scene, settings, w, liveQ, liveCount, prefetch);
+                shadedByFour = true;
             }
-            bool shadowRay = false;
-            if (w.alive[j])
-                w.alive[j] = shadeHit(scene, w.state[i], w.hit[i], w.sampler[i], settings, w.shadow[i], shadowRay);
-            else
-                missPath(scene, w.state[i], settings);
-            w.hasShadow[j] = shadowRay;
-        });
+        }
+#endif
+        if (!shadedByFour) {
+            launch(exec, "wavefront.shade", liveCount, [=] CA_HD(size_t j) {
+                prefetchAhead(scene, w, liveQ, liveCount, j, prefetch);
+                shadeEntry(scene, settings, w, liveQ[j], j);
+            });
+        }
 
         // ---- Shadow: any-hit test of the NEE samples, over the queue of paths that made one.
         const size_t shadowCount = compactQueue(exec, w.hasShadow, live, liveCount, w.selected, shadowQueue);

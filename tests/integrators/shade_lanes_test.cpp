@@ -73,8 +73,7 @@ size_t compareGroups(const Scene& scene, const SceneView& view, const Intersecto
         for (size_t g = 0; g + 4 <= eligible.size(); g += 4) {
             TestPath reference[4];
             PathState* state[4];
-            SurfaceInteraction interaction[4];
-            const SurfaceInteraction* si[4];
+            const Hit* hit4[4];
             IndependentSampler* sampler[4];
             ShadowRay* shadow[4];
             bool hasShadow[4];
@@ -85,12 +84,11 @@ size_t compareGroups(const Scene& scene, const SceneView& view, const Intersecto
                 reference[k].alive = shadeHit(view, reference[k].state, hit, reference[k].sampler, settings,
                                               reference[k].shadow, reference[k].hasShadow);
                 state[k] = &t.state;
-                interaction[k] = computeInteraction(view, t.state.ray, hit);
-                si[k] = &interaction[k];
+                hit4[k] = &hit;
                 sampler[k] = &t.sampler;
                 shadow[k] = &t.shadow;
             }
-            const uint32_t alive = shadeDiffuseQuad4(view, state, si, sampler, settings, shadow, hasShadow);
+            const uint32_t alive = shadeDiffuseQuad4(view, state, hit4, sampler, settings, shadow, hasShadow);
             for (int k = 0; k < 4; ++k) {
                 TestPath& t = paths[eligible[g + k]];
                 t.alive = (alive >> k) & 1u;

@@ -89,22 +89,28 @@ CA_HD_INLINE void sphereInteraction(const Sphere& s, bool flip, SurfaceInteracti
 /// the surface, the unflipped face normal (for dp/du, dp/dv), and ng / ns with flip_normals
 /// applied (for meshes with normals Mitsuba orients ng by ns). (The edges, not the vertices: the
 /// fewer 12-byte fields g++ copies through the stack, the fewer loads wait on partial stores.)
-struct TrianglePoint {
-    Vec3u tri;
-    Vec3f edge1, edge2;
-    Float b0;
-    Vec3f p;
-    Vec3f faceNormal;  // unflipped
-    Vec3f ng, ns;      // flip_normals applied
+template <class F>
+struct LaneTrianglePoint {
+    Vec3uOf<F> tri;
+    Vec3Of<F> edge1, edge2;
+    F b0;
+    Vec3Of<F> p;
+    Vec3Of<F> faceNormal;  // unflipped
+    Vec3Of<F> ng, ns;      // flip_normals applied
 };
+using TrianglePoint = LaneTrianglePoint<float>;
 
-CA_HD_INLINE TrianglePoint trianglePoint(const SceneView& scene, const Shape& shape, uint32_t primId, Float b1,
-                                         Float b2) {
-    TrianglePoint t;
-    t.tri = scene.triangles[primId];
-    // References, not copies: g++ copies a 12-byte Vec3f through general registers and the
-    // stack, and the float loads that follow wait on those stores (store forwarding fails).
-    const Vec3f &p0 = scene.positions[t.tri.x], &p1 = scene.positions[t.tri.y], &p2 = scene.positions[t.tri.z];
+/// trianglePoint generic over the lane type F: lane k is triangle primId[k] of a mesh with
+/// vertex normals where hasNormals, flip_normals where flip.
+template <LaneFloat F>
+CA_HD_FORCE_INLINE LaneTrianglePoint<F> trianglePointOf(const SceneView& scene, const IndexOf<F>& primId,
+                                                        MaskOf<F> hasNormals, MaskOf<F> flip, F b1, F b2) {
+    LaneTrianglePoint<F> t;
+    t.tri = lane::gather(scene.triangles, primId);
+    // References for one lane, not copies: g++ copies a 12-byte Vec3f through general registers
+    // and the stack, and the float loads that follow wait on those stores (store forwarding fails).
+    const auto &p0 = lane::gather(scene.positions, t.tri.x), &p1 = lane::gather(scene.positions, t.tri.y),
+               &p2 = lane::gather(scene.positions, t.tri.z);
     t.b0 = 1 - b1 - b2;
     t.p = p0 * t.b0 + p1 * b1 + p2 * b2;  // on the surface, not ray-distance rounded
     t.edge1 = p1 - p0;
@@ -112,19 +118,71 @@ CA_HD_INLINE TrianglePoint trianglePoint(const SceneView& scene, const Shape& sh
     t.faceNormal = normalize(cross(t.edge1, t.edge2));
     t.ng = t.faceNormal;
     t.ns = t.ng;
-    if (shape.hasNormals) {
-        const Vec3f n = scene.normals[t.tri.x] * t.b0 + scene.normals[t.tri.y] * b1 + scene.normals[t.tri.z] * b2;
-        if (lengthSquared(n) > 0) {
-            t.ns = normalize(n);
+    if (lane::any(hasNormals)) {
+        const Vec3Of<F> n = lane::gatherWhere(hasNormals, scene.normals, t.tri.x) * t.b0 +
+                            lane::gatherWhere(hasNormals, scene.normals, t.tri.y) * b1 +
+                            lane::gatherWhere(hasNormals, scene.normals, t.tri.z) * b2;
+        const MaskOf<F> shaded = hasNormals & (lengthSquared(n) > 0);
+        if (lane::any(shaded)) {
+            t.ns = lane::select<F>(shaded, normalize(n), t.ns);
             // Mitsuba orients the geometric normal by the shading normal for meshes with normals.
-            t.ng = faceForward(t.ng, t.ns);
+            t.ng = lane::select<F>(shaded, faceForward(t.ng, t.ns), t.ng);
         }
     }
-    if (shape.flipNormals) {
-        t.ng = -t.ng;
-        t.ns = -t.ns;
+    if (lane::any(flip)) {
+        t.ng = lane::select<F>(flip, -t.ng, t.ng);
+        t.ns = lane::select<F>(flip, -t.ns, t.ns);
     }
     return t;
+}
+
+CA_HD_INLINE TrianglePoint trianglePoint(const SceneView& scene, const Shape& shape, uint32_t primId, Float b1,
+                                         Float b2) {
+    return trianglePointOf<float>(scene, primId, shape.hasNormals, shape.flipNormals, b1, b2);
+}
+
+/// What computeInteraction finds at a mesh hit, generic over the lane type F (lane k: triangle
+/// primId[k], of a mesh with vertex normals / flip_normals / uvs where the masks say so).
+template <class F>
+struct LaneTriangleSurface {
+    Vec3Of<F> p, ng, ns, dpdu, dpdv;
+    Vec2Of<F> uv;
+};
+
+template <LaneFloat F>
+CA_HD_FORCE_INLINE LaneTriangleSurface<F> triangleSurface(const SceneView& scene, const IndexOf<F>& primId,
+                                                          MaskOf<F> hasNormals, MaskOf<F> flip, MaskOf<F> hasUVs,
+                                                          F b1, F b2) {
+    const LaneTrianglePoint<F> t = trianglePointOf<F>(scene, primId, hasNormals, flip, b1, b2);
+    LaneTriangleSurface<F> s{};
+    s.p = t.p;
+    s.ng = t.ng;
+    s.ns = t.ns;
+    // Mitsuba's mesh: dp/du, dp/dv from the uv parameterisation, else (or when the uv triangle
+    // is degenerate) coordinate_system of the unflipped face normal (built only then).
+    s.uv = Vec2Of<F>{b1, b2};
+    MaskOf<F> uvPartials = lane::none<F>();
+    if (lane::any(hasUVs)) {
+        const auto &uv0 = lane::gatherWhere(hasUVs, scene.uvs, t.tri.x),
+                   &uv1 = lane::gatherWhere(hasUVs, scene.uvs, t.tri.y),
+                   &uv2 = lane::gatherWhere(hasUVs, scene.uvs, t.tri.z);
+        s.uv = lane::select<F>(hasUVs, uv0 * t.b0 + uv1 * b1 + uv2 * b2, s.uv);
+        const Vec2Of<F> duv0 = uv1 - uv0, duv1 = uv2 - uv0;
+        const F det = duv0.x * duv1.y - duv0.y * duv1.x;
+        uvPartials = hasUVs & (det != lane::splat<F>(0));
+        if (lane::any(uvPartials)) {
+            const F invDet = 1 / det;
+            s.dpdu = (t.edge1 * duv1.y - t.edge2 * duv0.y) * invDet;
+            s.dpdv = (t.edge2 * duv0.x - t.edge1 * duv1.x) * invDet;
+        }
+    }
+    if (!lane::all(uvPartials)) {
+        Vec3Of<F> fs, ft;
+        orthonormalBasis<F>(t.faceNormal, fs, ft);
+        s.dpdu = lane::select<F>(uvPartials, s.dpdu, fs);
+        s.dpdv = lane::select<F>(uvPartials, s.dpdv, ft);
+    }
+    return s;
 }
 
 /// Whether a render of `scene` reads SurfaceInteraction::uv: only BSDF textures (bump and normal
@@ -142,33 +200,14 @@ CA_HD_INLINE SurfaceInteraction computeInteraction(const SceneView& scene, const
     if (hit.primId < scene.numTriangles()) {
         si.shape = scene.triangleShape[hit.primId];
         const Shape& shape = scene.shapes[si.shape];
-        const TrianglePoint t = trianglePoint(scene, shape, hit.primId, hit.b1, hit.b2);
+        const LaneTriangleSurface<float> t = triangleSurface<float>(
+            scene, hit.primId, shape.hasNormals, shape.flipNormals, shape.hasUVs, hit.b1, hit.b2);
         si.p = t.p;
         si.ng = t.ng;
         si.ns = t.ns;
-        // Mitsuba's mesh: dp/du, dp/dv from the uv parameterisation, else (or when the uv
-        // triangle is degenerate) coordinate_system of the unflipped face normal (built only then).
-        bool uvPartials = false;
-        if (shape.hasUVs) {
-            const Vec2f uv0 = scene.uvs[t.tri.x], uv1 = scene.uvs[t.tri.y], uv2 = scene.uvs[t.tri.z];
-            si.uv = uv0 * t.b0 + uv1 * hit.b1 + uv2 * hit.b2;
-            const Vec2f duv0 = uv1 - uv0, duv1 = uv2 - uv0;
-            const Float det = duv0.x * duv1.y - duv0.y * duv1.x;
-            if (det != 0) {
-                const Float invDet = 1 / det;
-                const Vec3f dp0 = t.edge1, dp1 = t.edge2;
-                si.dpdu = (dp0 * duv1.y - dp1 * duv0.y) * invDet;
-                si.dpdv = (dp1 * duv0.x - dp0 * duv1.x) * invDet;
-                uvPartials = true;
-            }
-        } else {
-            si.uv = Vec2f(hit.b1, hit.b2);
-        }
-        if (!uvPartials) {
-            const Frame faceFrame(t.faceNormal);
-            si.dpdu = faceFrame.s;
-            si.dpdv = faceFrame.t;
-        }
+        si.uv = t.uv;
+        si.dpdu = t.dpdu;
+        si.dpdv = t.dpdv;
     } else if (hit.primId >= scene.firstCylinder()) {
         const Cylinder& c = scene.cylinders[hit.primId - scene.firstCylinder()];
         si.shape = c.shape;

@@ -42,6 +42,7 @@ struct Float4 {
     static Float4 load(const float* p) { return {_mm_load_ps(p)}; }  // p 16-byte aligned
     static Float4 loadUnaligned(const float* p) { return {_mm_loadu_ps(p)}; }
     static Float4 broadcast(float f) { return {_mm_set1_ps(f)}; }
+    static Float4 fromLanes(float a, float b, float c, float d) { return {_mm_setr_ps(a, b, c, d)}; }
     void store(float* p) const { _mm_storeu_ps(p, v); }
     float operator[](int k) const {
         alignas(16) float f[4];
@@ -106,6 +107,7 @@ struct Float4 {
     CA_HD_FORCE_INLINE static Float4 load(const float* p) { return {{p[0], p[1], p[2], p[3]}}; }
     CA_HD_FORCE_INLINE static Float4 loadUnaligned(const float* p) { return load(p); }
     CA_HD_FORCE_INLINE static Float4 broadcast(float f) { return {{f, f, f, f}}; }
+    CA_HD_FORCE_INLINE static Float4 fromLanes(float a, float b, float c, float d) { return {{a, b, c, d}}; }
     CA_HD_FORCE_INLINE void store(float* p) const {
         for (int k = 0; k < 4; ++k) p[k] = v[k];
     }

@@ -3,6 +3,7 @@
 
 #include <bit>
 #include <cmath>
+#include <type_traits>
 #include <cstdint>
 
 #include "caustica/util/lane.h"
@@ -171,6 +172,23 @@ CA_HD_FORCE_INLINE Float4 dot(const Vec3F4& a, const Vec3F4& b) { return a.x * b
 CA_HD_FORCE_INLINE Vec3F4 cross(const Vec3F4& a, const Vec3F4& b) {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
+CA_HD_FORCE_INLINE Float4 lengthSquared(const Vec3F4& a) { return dot(a, a); }
+CA_HD_FORCE_INLINE Vec3F4 normalize(const Vec3F4& a) { return a * (1 / Float4::sqrt(dot(a, a))); }  // as Vec3f's
+CA_HD_FORCE_INLINE Vec3F4 faceForward(const Vec3F4& v, const Vec3F4& ref) {
+    return Vec3F4{Float4::select(dot(v, ref) < 0, -v.x, v.x), Float4::select(dot(v, ref) < 0, -v.y, v.y),
+                  Float4::select(dot(v, ref) < 0, -v.z, v.z)};
+}
+CA_HD_FORCE_INLINE Vec2F4 operator+(const Vec2F4& a, const Vec2F4& b) { return {a.x + b.x, a.y + b.y}; }
+CA_HD_FORCE_INLINE Vec2F4 operator-(const Vec2F4& a, const Vec2F4& b) { return {a.x - b.x, a.y - b.y}; }
+CA_HD_FORCE_INLINE Vec2F4 operator*(const Vec2F4& a, Float4 s) { return {a.x * s, a.y * s}; }
+
+/// An array index per lane (Index4) and three of them (Vec3u4: a triangle's vertices per lane).
+struct Index4 {
+    uint32_t k[4];
+};
+struct Vec3u4 {
+    Index4 x, y, z;
+};
 
 template <class F>
 struct LaneVectors;
@@ -178,16 +196,24 @@ template <>
 struct LaneVectors<float> {
     using Vec2 = Vec2f;
     using Vec3 = Vec3f;
+    using Index = uint32_t;
+    using Vec3u = caustica::Vec3u;
 };
 template <>
 struct LaneVectors<Float4> {
     using Vec2 = Vec2F4;
     using Vec3 = Vec3F4;
+    using Index = Index4;
+    using Vec3u = Vec3u4;
 };
 template <class F>
 using Vec2Of = typename LaneVectors<F>::Vec2;
 template <class F>
 using Vec3Of = typename LaneVectors<F>::Vec3;
+template <class F>
+using IndexOf = typename LaneVectors<F>::Index;
+template <class F>
+using Vec3uOf = typename LaneVectors<F>::Vec3u;
 
 namespace lane {
 template <class F>
@@ -200,6 +226,44 @@ CA_HD_FORCE_INLINE Vec3Of<F> select(MaskOf<F> m, const Vec3Of<F>& a, const Vec3O
 }
 /// Lane k of a Vec3F4 as a Vec3f.
 CA_HD_FORCE_INLINE Vec3f extract(const Vec3F4& v, int k) { return {v.x[k], v.y[k], v.z[k]}; }
+
+/// Four vectors (or index triples) as the lanes of one.
+CA_HD_FORCE_INLINE Vec3F4 fromLanes(const Vec3f& a, const Vec3f& b, const Vec3f& c, const Vec3f& d) {
+    return {Float4::fromLanes(a.x, b.x, c.x, d.x), Float4::fromLanes(a.y, b.y, c.y, d.y),
+            Float4::fromLanes(a.z, b.z, c.z, d.z)};
+}
+CA_HD_FORCE_INLINE Vec2F4 fromLanes(const Vec2f& a, const Vec2f& b, const Vec2f& c, const Vec2f& d) {
+    return {Float4::fromLanes(a.x, b.x, c.x, d.x), Float4::fromLanes(a.y, b.y, c.y, d.y)};
+}
+CA_HD_FORCE_INLINE Vec3u4 fromLanes(const Vec3u& a, const Vec3u& b, const Vec3u& c, const Vec3u& d) {
+    return {{{a.x, b.x, c.x, d.x}}, {{a.y, b.y, c.y, d.y}}, {{a.z, b.z, c.z, d.z}}};
+}
+
+/// Element i of the array `a` (anything with operator[]) in every lane: for one lane the element
+/// itself (a reference where operator[] gives one), for Index4 lane k's element i.k[k].
+template <class A>
+CA_HD_FORCE_INLINE decltype(auto) gather(const A& a, uint32_t i) {
+    return a[i];
+}
+template <class A>
+CA_HD_FORCE_INLINE auto gather(const A& a, const Index4& i) {
+    return fromLanes(a[i.k[0]], a[i.k[1]], a[i.k[2]], a[i.k[3]]);
+}
+/// gather where the mask is set; the other lanes read nothing and hold zero. (One lane: the
+/// caller has tested the mask.)
+template <class A>
+CA_HD_FORCE_INLINE decltype(auto) gatherWhere(bool, const A& a, uint32_t i) {
+    return a[i];
+}
+template <class A>
+CA_HD_FORCE_INLINE auto gatherWhere(Mask4 m, const A& a, const Index4& i) {
+    using T = std::decay_t<decltype(a[0])>;
+    const uint32_t bits = m.bits();
+    T e[4] = {};
+    for (int k = 0; k < 4; ++k)
+        if ((bits >> k) & 1u) e[k] = a[i.k[k]];
+    return fromLanes(e[0], e[1], e[2], e[3]);
+}
 }  // namespace lane
 
 /// Axis-aligned bounding box.

@@ -42,27 +42,14 @@ namespace shade_lanes_detail {
 inline Vec3F4 towards4(const Vec3F4& n, const Vec3F4& d) {  // n on d's side
     return lane::select<Float4>(dot(d, n) > 0, n, -n);
 }
-struct Lanes4 {
-    alignas(16) float v[4];
-    Float4 load() const { return Float4::load(v); }
-};
-inline Vec3F4 load3(const Vec3f (&v)[4]) {
-    Lanes4 x, y, z;
-    for (int k = 0; k < 4; ++k) {
-        x.v[k] = v[k].x;
-        y.v[k] = v[k].y;
-        z.v[k] = v[k].z;
-    }
-    return {x.load(), y.load(), z.load()};
-}
+inline Float4 load4(const float (&v)[4]) { return Float4::fromLanes(v[0], v[1], v[2], v[3]); }
+inline Vec3F4 load3(const Vec3f (&v)[4]) { return lane::fromLanes(v[0], v[1], v[2], v[3]); }
 inline SpectrumF4 loadSpectrum(const Spectrum (&v)[4]) {
-    Lanes4 r, g, b;
-    for (int k = 0; k < 4; ++k) {
-        r.v[k] = v[k].r;
-        g.v[k] = v[k].g;
-        b.v[k] = v[k].b;
-    }
-    return {r.load(), g.load(), b.load()};
+    return {Float4::fromLanes(v[0].r, v[1].r, v[2].r, v[3].r), Float4::fromLanes(v[0].g, v[1].g, v[2].g, v[3].g),
+            Float4::fromLanes(v[0].b, v[1].b, v[2].b, v[3].b)};
+}
+inline Mask4 maskOf(const bool (&b)[4]) {
+    return Float4::fromLanes(b[0] ? 1.0f : 0.0f, b[1] ? 1.0f : 0.0f, b[2] ? 1.0f : 0.0f, b[3] ? 1.0f : 0.0f) > 0.0f;
 }
 }  // namespace shade_lanes_detail
 
@@ -88,11 +75,6 @@ struct LaneBsdfSample<Float4> {
 };
 
 namespace shade_lanes_detail {
-inline Mask4 maskOf(const bool (&b)[4]) {
-    Lanes4 l;
-    for (int k = 0; k < 4; ++k) l.v[k] = b[k] ? 1.0f : 0.0f;
-    return l.load() > 0.0f;
-}
 
 /// A plain diffuse BSDF at four vertices: PreparedLeaf::evalPdfAlone / sampleAlone's operations.
 struct DiffuseLanes4 {
@@ -121,13 +103,13 @@ struct DiffuseLanes4 {
 }  // namespace shade_lanes_detail
 
 /// Four paths' vertices for shadeVertex (F = Float4), all eligible (diffuseQuadEligible, under
-/// lights that are all rectangles). finish() writes the lanes back into the paths.
+/// lights that are all rectangles): their surfaces (triangleSurface over lanes), throughputs,
+/// η scales and ray directions in lanes. finish() writes the lanes back into the paths.
 template <class Sampler>
 struct LaneVertex4 {
     using F = Float4;
     const SceneView& scene;
     PathState* const* path;
-    const SurfaceInteraction* const* si;
     Sampler* const* sampler;
     ShadowRay* const* shadow;
     bool* hasShadow;
@@ -135,28 +117,38 @@ struct LaneVertex4 {
     SpectrumF4 B;
     Float4 eta;
     uint32_t depth[4];
+    uint32_t shape[4];
 
-    LaneVertex4(const SceneView& scene_, PathState* const* path_, const SurfaceInteraction* const* si_,
-                Sampler* const* sampler_, ShadowRay* const* shadow_, bool* hasShadow_)
-        : scene(scene_), path(path_), si(si_), sampler(sampler_), shadow(shadow_), hasShadow(hasShadow_) {
+    LaneVertex4(const SceneView& scene_, PathState* const* path_, const Hit* const* hit, Sampler* const* sampler_,
+                ShadowRay* const* shadow_, bool* hasShadow_)
+        : scene(scene_), path(path_), sampler(sampler_), shadow(shadow_), hasShadow(hasShadow_) {
         using namespace shade_lanes_detail;
-        Vec3f p[4], ng[4], ns[4], du[4], d[4];
+        Index4 prim;
+        bool normals[4], flip[4], uvs[4];
+        float b1[4], b2[4], e[4];
+        Vec3f d[4];
         Spectrum b[4];
-        Lanes4 e;
         for (int k = 0; k < 4; ++k) {
-            p[k] = si[k]->p;
-            ng[k] = si[k]->ng;
-            ns[k] = si[k]->ns;
-            du[k] = si[k]->dpdu;
+            prim.k[k] = hit[k]->primId;
+            shape[k] = scene.triangleShape[hit[k]->primId];
+            const Shape& s = scene.shapes[shape[k]];
+            normals[k] = s.hasNormals;
+            flip[k] = s.flipNormals;
+            uvs[k] = s.hasUVs;
+            b1[k] = hit[k]->b1;
+            b2[k] = hit[k]->b2;
             d[k] = path[k]->ray.d;
             b[k] = path[k]->throughput;
-            e.v[k] = path[k]->etaScale;
+            e[k] = path[k]->etaScale;
             depth[k] = path[k]->depth;
             hasShadow[k] = false;
         }
-        P = load3(p), NG = load3(ng), NS = load3(ns), dpdu = load3(du), D = load3(d);
+        const LaneTriangleSurface<Float4> surface =
+            triangleSurface<Float4>(scene, prim, maskOf(normals), maskOf(flip), maskOf(uvs), load4(b1), load4(b2));
+        P = surface.p, NG = surface.ng, NS = surface.ns, dpdu = surface.dpdu;
+        D = load3(d);
         B = loadSpectrum(b);
-        eta = e.load();
+        eta = load4(e);
     }
 
     Vec3F4 rayDirection() const { return D; }
@@ -176,45 +168,39 @@ struct LaneVertex4 {
         shadingFrameAxes<Float4>(NS, dpdu, bsdf.s, bsdf.t);
         bsdf.woL = frameToLocal<Float4>(bsdf.s, bsdf.t, bsdf.n, wo);
         Spectrum r[4];
-        for (int k = 0; k < 4; ++k) r[k] = scene.bsdfs[scene.shapes[si[k]->shape].bsdf].reflectance;
+        for (int k = 0; k < 4; ++k) r[k] = scene.bsdfs[scene.shapes[shape[k]].bsdf].reflectance;
         bsdf.R = shade_lanes_detail::loadSpectrum(r);
         return bsdf;
     }
     Mask4 deltaBsdf() const { return lane::none<Float4>(); }  // eligible: diffuse
     Float4 get1D(Mask4 alive) {
         const uint32_t bits = alive.bits();
-        shade_lanes_detail::Lanes4 u;
-        for (int k = 0; k < 4; ++k) u.v[k] = (bits >> k) & 1u ? sampler[k]->get1D() : 0.0f;
-        return u.load();
+        float u[4];
+        for (int k = 0; k < 4; ++k) u[k] = (bits >> k) & 1u ? sampler[k]->get1D() : 0.0f;
+        return shade_lanes_detail::load4(u);
     }
     Vec2F4 get2D(Mask4 alive) {
         const uint32_t bits = alive.bits();
-        shade_lanes_detail::Lanes4 x, y;
-        for (int k = 0; k < 4; ++k) {
-            x.v[k] = y.v[k] = 0;
-            if ((bits >> k) & 1u) {
-                const Vec2f u = sampler[k]->get2D();
-                x.v[k] = u.x;
-                y.v[k] = u.y;
-            }
-        }
-        return {x.load(), y.load()};
+        Vec2f u[4];
+        for (int k = 0; k < 4; ++k)
+            if ((bits >> k) & 1u) u[k] = sampler[k]->get2D();
+        return lane::fromLanes(u[0], u[1], u[2], u[3]);
     }
     Mask4 sampleLight(Float4 uSelect, const Vec2F4& uLight, LightSampleF4& ls) const {
         using namespace shade_lanes_detail;
         const uint32_t count = uint32_t(scene.lights.size());
         Vec3f corner[4], edgeU[4], edgeV[4], normal[4];
         Spectrum le[4];
-        Lanes4 area;
+        float area[4];
         for (int k = 0; k < 4; ++k) {
             const Light& l = scene.lights[min(uint32_t(uSelect[k] * Float(count)), count - 1)];
             corner[k] = l.quadCorner, edgeU[k] = l.quadEdgeU, edgeV[k] = l.quadEdgeV, normal[k] = l.quadNormal;
             le[k] = l.radiance;
-            area.v[k] = l.area;
+            area[k] = l.area;
         }
         ls.p = light_detail::parallelogramPoint<Float4>(load3(corner), load3(edgeU), load3(edgeV), uLight);
         ls.n = load3(normal);
-        const Float4 pdf = light_detail::areaToSolidAngle<Float4>(P, ls.p, ls.n, area.load());
+        const Float4 pdf = light_detail::areaToSolidAngle<Float4>(P, ls.p, ls.n, load4(area));
         ls.Le = loadSpectrum(le);
         ls.delta = lane::none<Float4>();  // a rectangle
         return light_detail::areaLightDirection<Float4>(P, ls.p, pdf, Float4::broadcast(Float(1) / Float(count)), ls.wi,
@@ -244,7 +230,7 @@ struct LaneVertex4 {
             PathState& ps = *path[k];
             ps.prevBsdfPdf = bs.pdf[k];
             ps.prevBsdfDelta = false;
-            ps.prevP = si[k]->p;
+            ps.prevP = lane::extract(P, k);
             ps.ray = Ray{lane::extract(o, k), lane::extract(bs.wi, k), kInfinity};
             ++depth[k];
         }
@@ -266,13 +252,13 @@ struct LaneVertex4 {
     }
 };
 
-/// shadeHitAt of four eligible paths (diffuseQuadEligible, allLightsAreQuads), each with its own
-/// interaction and sampler: shadeVertex over a LaneVertex4. Returns the alive bits.
+/// shadeHit of four eligible paths (diffuseQuadEligible, allLightsAreQuads), each with its own
+/// hit and sampler: shadeVertex over a LaneVertex4. Returns the alive bits.
 template <class Sampler>
-inline uint32_t shadeDiffuseQuad4(const SceneView& scene, PathState* const path[4], const SurfaceInteraction* const si[4],
+inline uint32_t shadeDiffuseQuad4(const SceneView& scene, PathState* const path[4], const Hit* const hit[4],
                                   Sampler* const sampler[4], const PathSettings& settings, ShadowRay* const shadow[4],
                                   bool hasShadow[4]) {
-    LaneVertex4<Sampler> v(scene, path, si, sampler, shadow, hasShadow);
+    LaneVertex4<Sampler> v(scene, path, hit, sampler, shadow, hasShadow);
     const Mask4 alive = shadeVertex(v, settings);
     v.finish();
     return alive.bits();

@@ -112,20 +112,18 @@ inline void shadeStageByFour(const SceneView& scene, const PathSettings& setting
         if (count < 4) continue;
         count = 0;
         PathState* paths[4];
-        SurfaceInteraction interactions[4];
-        const SurfaceInteraction* si[4];
+        const Hit* hits[4];
         IndependentSampler* samplers[4];
         ShadowRay* shadows[4];
         bool hasShadow[4];
         for (int k = 0; k < 4; ++k) {
             const uint32_t id = liveQ[gathered[k]];
             paths[k] = &w.state[id];
-            interactions[k] = computeInteraction(scene, w.state[id].ray, w.hit[id]);
-            si[k] = &interactions[k];
+            hits[k] = &w.hit[id];
             samplers[k] = &w.sampler[id];
             shadows[k] = &w.shadow[id];
         }
-        const uint32_t alive = shadeDiffuseQuad4(scene, paths, si, samplers, settings, shadows, hasShadow);
+        const uint32_t alive = shadeDiffuseQuad4(scene, paths, hits, samplers, settings, shadows, hasShadow);
         for (int k = 0; k < 4; ++k) {
             w.alive[gathered[k]] = (alive >> k) & 1u;
             w.hasShadow[gathered[k]] = hasShadow[k];

@@ -2,7 +2,7 @@
 // the one description of a bounce; here it runs over LaneVertex4, whose F is Float4: four paths'
 // vertices side by side in SSE registers, each lane given the bits the scalar instantiation gives
 // that path (every lane operation rounds as its scalar form, util/lane.h). The wavefront's CPU
-// schedule gathers the queue entries it can take four at a time (shadeQueueByFour) and shades the
+// schedule gathers the queue entries it can take four at a time (shadeStageByFour) and shades the
 // rest one by one through the same shadeVertex; a GPU thread always runs the scalar vertex.
 //
 // What a lane vertex can take today (diffuseQuadEligible): a hit on a triangle of a shape that
@@ -76,7 +76,9 @@ struct LaneBsdfSample<Float4> {
 
 namespace shade_lanes_detail {
 
-/// A plain diffuse BSDF at four vertices: PreparedLeaf::evalPdfAlone / sampleAlone's operations.
+/// A plain diffuse BSDF at four vertices: PreparedLeaf::evalPdfAlone / sampleAlone's operations
+/// (bsdf.h) around the shared diffuse functions. The scalar path weighs its one leaf by 1 and sums
+/// it onto zero; the `* one` and `zero +` below repeat that, so -0 and NaN come out as there.
 struct DiffuseLanes4 {
     Vec3F4 s, t, n, woL;
     SpectrumF4 R;

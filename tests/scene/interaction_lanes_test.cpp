@@ -18,9 +18,6 @@ namespace {
 bool sameBits(const Vec3f& a, const Vec3f& b) { return std::memcmp(&a, &b, sizeof(Vec3f)) == 0; }
 bool sameBits(const Vec2f& a, const Vec2f& b) { return std::memcmp(&a, &b, sizeof(Vec2f)) == 0; }
 Vec2f extract(const Vec2F4& v, int k) { return {v.x[k], v.y[k]}; }
-Mask4 maskOf(const bool (&b)[4]) {
-    return Float4::fromLanes(b[0] ? 1.0f : 0.0f, b[1] ? 1.0f : 0.0f, b[2] ? 1.0f : 0.0f, b[3] ? 1.0f : 0.0f) > 0.0f;
-}
 
 /// Six meshes of two triangles, one per case: plain; vertex normals (one zero); flipped with
 /// normals; uvs; a degenerate uv triangle; flipped with uvs.
@@ -71,7 +68,7 @@ TEST(InteractionLanes, TriangleSurfaceGivesEachLaneItsScalarBits) {
             want[k] = triangleSurface<float>(view, ids.k[k], normals[k], flip[k], uvs[k], b1[k], b2[k]);
         }
         const LaneTriangleSurface<Float4> got =
-            triangleSurface<Float4>(view, ids, maskOf(normals), maskOf(flip), maskOf(uvs),
+            triangleSurface<Float4>(view, ids, lane::maskOf(normals), lane::maskOf(flip), lane::maskOf(uvs),
                                     Float4::fromLanes(b1[0], b1[1], b1[2], b1[3]),
                                     Float4::fromLanes(b2[0], b2[1], b2[2], b2[3]));
         for (int k = 0; k < 4; ++k) {

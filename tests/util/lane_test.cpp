@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 #include "caustica/scene/bsdf.h"
@@ -91,6 +92,19 @@ TEST(Lanes, Float4OperationsRoundAsTheirScalarForms) {
     EXPECT_TRUE(lane::any(one > Float4::broadcast(0.5f)));
     EXPECT_FALSE(lane::all(one > Float4::broadcast(1)));
 }
+
+TEST(Lanes, MaskOfFourFlagsSetsExactlyTheirLanes) {
+    for (uint32_t pattern = 0; pattern < 16; ++pattern) {
+        const bool flags[4] = {(pattern & 1u) != 0, (pattern & 2u) != 0, (pattern & 4u) != 0, (pattern & 8u) != 0};
+        EXPECT_EQ(lane::maskOf(flags).bits(), pattern);
+    }
+}
+
+// Per-path structs and their lane forms (LaneOf).
+static_assert(std::is_same_v<SpectrumOf<float>, Spectrum>);
+static_assert(std::is_same_v<SpectrumOf<Float4>, SpectrumF4>);
+static_assert(std::is_same_v<LightSampleOf<float>, LightSample>);
+static_assert(std::is_same_v<BsdfSampleOf<float>, BsdfSample>);
 
 TEST(Lanes, CosineHemisphereAndDiskMatchTheScalarWarpsBitForBit) {
     std::vector<float> ux, uy;

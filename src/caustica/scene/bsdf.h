@@ -37,13 +37,7 @@ struct BsdfSample {
 
 /// BsdfSample of code generic over the lane type F (util/lane.h).
 template <class F>
-struct LaneBsdfSample;
-template <>
-struct LaneBsdfSample<float> {
-    using Type = BsdfSample;
-};
-template <class F>
-using BsdfSampleOf = typename LaneBsdfSample<F>::Type;
+using BsdfSampleOf = LaneOf<BsdfSample, F>;
 
 namespace bsdf_detail {
 

@@ -26,13 +26,7 @@ struct LightSample {
 
 /// LightSample of code generic over the lane type F (util/lane.h).
 template <class F>
-struct LaneLightSample;
-template <>
-struct LaneLightSample<float> {
-    using Type = LightSample;
-};
-template <class F>
-using LightSampleOf = typename LaneLightSample<F>::Type;
+using LightSampleOf = LaneOf<LightSample, F>;
 
 namespace light_detail {
 

@@ -27,6 +27,23 @@ struct LaneTraits<Float4> {
 };
 template <class F>
 using MaskOf = typename LaneTraits<F>::Mask;
+/// The form of a per-path struct T for the lane type F: T itself for F = float; for F = Float4
+/// the struct of four T side by side that the header defining it names by specialising
+/// LaneForm4<T> (Spectrum -> SpectrumF4, LightSample -> LightSampleF4, BsdfSample -> BsdfSampleF4).
+template <class T>
+struct LaneForm4;
+template <class T, class F>
+struct LaneFormOf {
+    static_assert(LaneTraits<F>::width == 1);
+    using Type = T;
+};
+template <class T>
+struct LaneFormOf<T, Float4> {
+    using Type = typename LaneForm4<T>::Type;
+};
+template <class T, class F>
+using LaneOf = typename LaneFormOf<T, F>::Type;
+
 /// float or Float4: what generic functions that deduce F accept (so that a call with ints or
 /// doubles still takes a function's float form).
 template <class F>
@@ -47,6 +64,11 @@ CA_HD_FORCE_INLINE F splat(float f) {
 template <class F>
 CA_HD_FORCE_INLINE MaskOf<F> none() {
     return splat<F>(0) != splat<F>(0);
+}
+
+/// Four per-path flags as a Mask4, lane k = b[k].
+CA_HD_FORCE_INLINE Mask4 maskOf(const bool (&b)[4]) {
+    return Float4::fromLanes(b[0] ? 1.0f : 0.0f, b[1] ? 1.0f : 0.0f, b[2] ? 1.0f : 0.0f, b[3] ? 1.0f : 0.0f) > 0.0f;
 }
 
 // ---- F = float: the plain expressions (min/max as caustica::min/max).

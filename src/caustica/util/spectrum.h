@@ -43,18 +43,12 @@ CA_HD_FORCE_INLINE SpectrumF4 operator*(const SpectrumF4& a, const SpectrumF4& b
 CA_HD_FORCE_INLINE SpectrumF4 operator*(const SpectrumF4& a, Float4 s) { return {a.r * s, a.g * s, a.b * s}; }
 CA_HD_FORCE_INLINE SpectrumF4 operator*(Float4 s, const SpectrumF4& a) { return {a.r * s, a.g * s, a.b * s}; }
 
-template <class F>
-struct LaneSpectrum;
 template <>
-struct LaneSpectrum<float> {
-    using Type = Spectrum;
-};
-template <>
-struct LaneSpectrum<Float4> {
+struct LaneForm4<Spectrum> {
     using Type = SpectrumF4;
 };
 template <class F>
-using SpectrumOf = typename LaneSpectrum<F>::Type;
+using SpectrumOf = LaneOf<Spectrum, F>;
 
 /// Spectrum::isBlack and Spectrum::maxValue, generic over the lane type F.
 template <class F>

@@ -48,9 +48,6 @@ inline SpectrumF4 loadSpectrum(const Spectrum (&v)[4]) {
     return {Float4::fromLanes(v[0].r, v[1].r, v[2].r, v[3].r), Float4::fromLanes(v[0].g, v[1].g, v[2].g, v[3].g),
             Float4::fromLanes(v[0].b, v[1].b, v[2].b, v[3].b)};
 }
-inline Mask4 maskOf(const bool (&b)[4]) {
-    return Float4::fromLanes(b[0] ? 1.0f : 0.0f, b[1] ? 1.0f : 0.0f, b[2] ? 1.0f : 0.0f, b[3] ? 1.0f : 0.0f) > 0.0f;
-}
 }  // namespace shade_lanes_detail
 
 struct LightSampleF4 {
@@ -66,11 +63,11 @@ struct BsdfSampleF4 {
     Mask4 delta;
 };
 template <>
-struct LaneLightSample<Float4> {
+struct LaneForm4<LightSample> {
     using Type = LightSampleF4;
 };
 template <>
-struct LaneBsdfSample<Float4> {
+struct LaneForm4<BsdfSample> {
     using Type = BsdfSampleF4;
 };
 
@@ -146,7 +143,7 @@ struct LaneVertex4 {
             hasShadow[k] = false;
         }
         const LaneTriangleSurface<Float4> surface =
-            triangleSurface<Float4>(scene, prim, maskOf(normals), maskOf(flip), maskOf(uvs), load4(b1), load4(b2));
+            triangleSurface<Float4>(scene, prim, lane::maskOf(normals), lane::maskOf(flip), lane::maskOf(uvs), load4(b1), load4(b2));
         P = surface.p, NG = surface.ng, NS = surface.ns, dpdu = surface.dpdu;
         D = load3(d);
         B = loadSpectrum(b);
@@ -162,7 +159,7 @@ struct LaneVertex4 {
     Mask4 belowMaxDepth(const PathSettings& settings) const {
         bool b[4];
         for (int k = 0; k < 4; ++k) b[k] = depth[k] + 1 < maxDepthOf(settings);
-        return shade_lanes_detail::maskOf(b);
+        return lane::maskOf(b);
     }
     shade_lanes_detail::DiffuseLanes4 prepareBsdf(const Vec3F4& wo) const {
         shade_lanes_detail::DiffuseLanes4 bsdf;
@@ -240,7 +237,7 @@ struct LaneVertex4 {
     Mask4 atLeastRrDepth(const PathSettings& settings) const {
         bool b[4];
         for (int k = 0; k < 4; ++k) b[k] = depth[k] >= uint32_t(settings.rrDepth);
-        return shade_lanes_detail::maskOf(b);
+        return lane::maskOf(b);
     }
     Float4 etaScale() const { return eta; }
     void scaleThroughput(Mask4 m, Float4 s) { B = lane::select<Float4>(m, B * s, B); }

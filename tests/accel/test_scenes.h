@@ -2,6 +2,8 @@
 #pragma once
 
 #include <cstdint>
+#include <cstring>
+#include <utility>
 #include <vector>
 
 #include "caustica/accel/primitive_intersect.h"
@@ -13,6 +15,13 @@
 namespace caustica::test {
 
 /// Deterministic uniform numbers from the project's counter-based sampler.
+/// A float's bits, for comparisons to the bit.
+inline uint32_t bitsOf(Float f) {
+    uint32_t u;
+    std::memcpy(&u, &f, sizeof u);
+    return u;
+}
+
 class TestRng {
 public:
     explicit TestRng(uint64_t seed) : sampler_(seed, 0, 0x5eed) {}
@@ -97,6 +106,22 @@ inline Scene makeRandomScene(const RandomSceneOptions& opt) {
     for (uint32_t i = 0; i < opt.numSpheres; ++i)
         addSphere(scene, rng.inBox(lo, hi), s * rng.uniform(0.05f, 1.0f));
     return scene;
+}
+
+/// A mesh shape of two triangles forming the parallelogram corner + [0,1]·edgeU + [0,1]·edgeV
+/// (as a rectangle shape is), split along the diagonal from corner + edgeU to corner + edgeV;
+/// `rotate` (0-2) turns both triangles' vertex order, so every vertex slot gets every corner.
+inline uint32_t addParallelogram(Scene& scene, Vec3f corner, Vec3f edgeU, Vec3f edgeV, int rotate = 0) {
+    const uint32_t shape = addMeshShape(scene, uint32_t(scene.triangles.size()), 2);
+    Vec3f a[3] = {corner, corner + edgeU, corner + edgeV};
+    Vec3f b[3] = {corner + edgeU, corner + edgeU + edgeV, corner + edgeV};
+    for (int r = 0; r < rotate; ++r) {
+        std::swap(a[0], a[1]), std::swap(a[1], a[2]);
+        std::swap(b[0], b[1]), std::swap(b[1], b[2]);
+    }
+    addTriangle(scene, shape, a[0], a[1], a[2]);
+    addTriangle(scene, shape, b[0], b[1], b[2]);
+    return shape;
 }
 
 /// A height-field mesh of n x n quads over center + [-halfSize, halfSize]^2 in x and z, with

@@ -11,6 +11,7 @@
 #include <embree3/rtcore.h>
 
 #include "caustica/accel/intersector.h"
+#include "caustica/accel/parallelogram_intersect.h"
 #include "caustica/accel/primitive_intersect.h"
 #include "caustica/accel/sphere_lanes.h"
 #include "caustica/util/error.h"
@@ -141,7 +142,7 @@ Hit toHit(const EmbreeIntersector& it, float tfar, unsigned geomID, unsigned pri
     Hit hit;
     hit.t = tfar;
     if (geomID == kTriangleGeomId) {
-        hit.primId = primID;
+        hit.primId = it.embreeTriangles ? it.embreeTriangles[primID] : primID;
         hit.b1 = u;
         hit.b2 = v;
     } else {
@@ -152,13 +153,30 @@ Hit toHit(const EmbreeIntersector& it, float tfar, unsigned geomID, unsigned pri
 
 // ---- spheres and cylinders tested directly (EmbreeSceneOptions::directPrimitives) ----
 
-/// The closest of the intersector's direct spheres and cylinders hit with t in (0, tMax), written
-/// to `hit`; false (hit unchanged) if none is. Tested before Embree's query, whose tfar then
-/// becomes that t, so Embree culls what lies beyond and keeps a triangle only if it is nearer.
-/// tMax is Embree's tfar for the ray, as a user geometry's callback would get it.
-bool closestDirectHit(const EmbreeIntersector& it, const Ray& ray, Float tMax, Hit& hit) {
+/// The hit of a ray on direct parallelogram `q` at t and edge coordinates (u, v).
+Hit parallelogramHit(const PreparedParallelogram& q, Float t, Float u, Float v) {
+    Hit hit;
+    hit.t = t;
+    parallelogramHitTriangle(q.mesh, u, v, hit.primId, hit.b1, hit.b2);
+    return hit;
+}
+
+/// The closest of the intersector's direct parallelograms (when `quads`), spheres and cylinders
+/// hit with t in (0, tMax), written to `hit`; false (hit unchanged) if none is. Tested before
+/// Embree's query, whose tfar then becomes that t, so Embree culls what lies beyond and keeps a
+/// triangle only if it is nearer. tMax is Embree's tfar for the ray, as a user geometry's
+/// callback would get it. Parallelograms first, then spheres, then cylinders, each only if
+/// nearer than the nearest so far (the packets' order too).
+bool closestDirectHit(const EmbreeIntersector& it, const Ray& ray, Float tMax, Hit& hit, bool quads = true) {
     bool found = false;
-    Float t;
+    Float t, u, v;
+    for (uint32_t i = 0; quads && i < it.numDirectQuads; ++i) {
+        if (intersectParallelogram<float>(ray.o, ray.d, tMax, it.directQuads[i], t, u, v)) {
+            tMax = t;
+            hit = parallelogramHit(it.directQuads[i], t, u, v);
+            found = true;
+        }
+    }
     for (uint32_t i = 0; i < it.numDirectSpheres; ++i) {
         if (primHit(it.directSpheres[i], ray.o, ray.d, tMax, t)) {
             tMax = t;
@@ -176,14 +194,22 @@ bool closestDirectHit(const EmbreeIntersector& it, const Ray& ray, Float tMax, H
     return found;
 }
 
-/// Whether any direct sphere or cylinder is hit with t in (0, tMax).
-bool anyDirectHit(const EmbreeIntersector& it, const Ray& ray, Float tMax) {
-    Float t;
+/// Whether any direct parallelogram (when `quads`), sphere or cylinder is hit with t in (0, tMax).
+bool anyDirectHit(const EmbreeIntersector& it, const Ray& ray, Float tMax, bool quads = true) {
+    Float t, u, v;
+    for (uint32_t i = 0; quads && i < it.numDirectQuads; ++i)
+        if (intersectParallelogram<float>(ray.o, ray.d, tMax, it.directQuads[i], t, u, v)) return true;
     for (uint32_t i = 0; i < it.numDirectSpheres; ++i)
         if (primHit(it.directSpheres[i], ray.o, ray.d, tMax, t)) return true;
     for (uint32_t i = 0; i < it.numDirectCylinders; ++i)
         if (primHit(it.directCylinders[i], ray.o, ray.d, tMax, t)) return true;
     return false;
+}
+
+/// Whether direct primitives are left to test ray by ray after the parallelograms' lanes (when
+/// `quadsDone`): spheres or cylinders, or parallelograms not tested in lanes.
+bool otherDirectPrimitives(const EmbreeIntersector& it, bool quadsDone) {
+    return it.numDirectSpheres + it.numDirectCylinders > 0 || (!quadsDone && it.numDirectQuads > 0);
 }
 
 /// Whether the intersector's direct primitives are one sphere and nothing else (the bundled
@@ -221,6 +247,49 @@ uint32_t directSphereLanes(const EmbreeIntersector& it, const R& r, const int (&
 template <int W, class R>
 uint32_t directSphereLanes(const EmbreeIntersector&, const R&, const int (&)[W], int, float (&)[W]) {
     return 0;  // never called: oneDirectSphere is false
+}
+#endif
+
+#if CA_FLOAT4_SSE
+/// The direct parallelograms against the valid lanes [0, m) of packet `r` (W a multiple of 4),
+/// four lanes per test, in closestDirectHit's order: where lane k hits one before r.tfar[k],
+/// r.tfar[k] becomes the nearest hit's t, hit[k] that hit, and bit k of the result is set.
+/// intersectParallelogram<Float4> gives each lane the float form's bits, so the lanes get what
+/// the single-ray queries give their rays.
+template <int W, class R>
+uint32_t directQuadLanes(const EmbreeIntersector& it, R& r, const int (&valid)[W], int m, Hit (&hit)[W]) {
+    static_assert(W % 4 == 0, "packets of 4, 8 or 16 lanes");
+    uint32_t hits = 0;
+    for (int k0 = 0; k0 < m; k0 += 4) {
+        const Vec3F4 o{Float4::loadUnaligned(r.org_x + k0), Float4::loadUnaligned(r.org_y + k0),
+                       Float4::loadUnaligned(r.org_z + k0)};
+        const Vec3F4 d{Float4::loadUnaligned(r.dir_x + k0), Float4::loadUnaligned(r.dir_y + k0),
+                       Float4::loadUnaligned(r.dir_z + k0)};
+        const bool live[4] = {k0 < m && valid[k0] != 0, k0 + 1 < m && valid[k0 + 1] != 0,
+                              k0 + 2 < m && valid[k0 + 2] != 0, k0 + 3 < m && valid[k0 + 3] != 0};
+        const Mask4 lanes = lane::maskOf(live);
+        if (!lane::any(lanes)) continue;
+        Float4 tMax = Float4::loadUnaligned(r.tfar + k0), bestU = Float4::broadcast(0), bestV = bestU;
+        Index4 best;
+        Mask4 found = lane::none<Float4>();
+        for (uint32_t i = 0; i < it.numDirectQuads; ++i) {
+            Float4 t, u, v;
+            const Mask4 h = intersectParallelogram<Float4>(o, d, tMax, it.directQuads[i], t, u, v) & lanes;
+            if (!lane::any(h)) continue;
+            tMax = lane::select(h, t, tMax);
+            bestU = lane::select(h, u, bestU);
+            bestV = lane::select(h, v, bestV);
+            for (uint32_t b = h.bits(); b != 0; b &= b - 1) best.k[__builtin_ctz(b)] = i;
+            found = found | h;
+        }
+        for (uint32_t b = found.bits(); b != 0; b &= b - 1) {
+            const int j = __builtin_ctz(b), k = k0 + j;
+            r.tfar[k] = tMax[j];
+            hit[k] = parallelogramHit(it.directQuads[best.k[j]], tMax[j], bestU[j], bestV[j]);
+            hits |= 1u << k;
+        }
+    }
+    return hits;
 }
 #endif
 
@@ -277,6 +346,14 @@ void intersectPackets(const EmbreeIntersector& it, int n, const Ray* const* rays
         }
         Hit direct[W];
         bool directFound[W] = {};
+        bool quadsDone = false;  // the direct parallelograms tested in lanes already
+#if CA_FLOAT4_SSE
+        if (it.numDirectQuads > 0) {
+            for (uint32_t lanes = directQuadLanes<W>(it, rh.ray, valid, m, direct); lanes != 0; lanes &= lanes - 1)
+                directFound[__builtin_ctz(lanes)] = true;
+            quadsDone = true;
+        }
+#endif
         if (oneDirectSphere(it)) {
             float t[W];
             for (uint32_t lanes = directSphereLanes<W>(it, rh.ray, valid, m, t); lanes != 0; lanes &= lanes - 1) {
@@ -285,11 +362,13 @@ void intersectPackets(const EmbreeIntersector& it, int n, const Ray* const* rays
                 directFound[k] = true;
                 rh.ray.tfar[k] = t[k];
             }
-        } else if (it.hasDirectPrimitives()) {
+        } else if (otherDirectPrimitives(it, quadsDone)) {
             for (int k = 0; k < m; ++k) {
                 if (!valid[k]) continue;
-                directFound[k] = closestDirectHit(it, *rays[first + k], rh.ray.tfar[k], direct[k]);
-                if (directFound[k]) rh.ray.tfar[k] = direct[k].t;
+                if (closestDirectHit(it, *rays[first + k], rh.ray.tfar[k], direct[k], !quadsDone)) {
+                    directFound[k] = true;
+                    rh.ray.tfar[k] = direct[k].t;
+                }
             }
         }
         Packet<W>::intersect(valid, it.scene, &context, &rh);
@@ -312,20 +391,34 @@ void occludedPackets(const EmbreeIntersector& it, int n, const Ray* const* rays,
         fillPacket<W>(r, valid, m, rays + first);
         bool directHit[W] = {};  // such a lane is occluded already: Embree skips it
         bool anyLeft = true;
-        if (oneDirectSphere(it)) {
-            float t[W];
-            const uint32_t lanes = directSphereLanes<W>(it, r, valid, m, t);
+        bool quadsDone = false;  // the direct parallelograms tested in lanes already
+#if CA_FLOAT4_SSE
+        if (it.numDirectQuads > 0) {
+            Hit unused[W];
+            const uint32_t lanes = directQuadLanes<W>(it, r, valid, m, unused);
             anyLeft = false;
             for (int k = 0; k < m; ++k) {
                 directHit[k] = (lanes >> k) & 1u;
                 if (directHit[k]) valid[k] = 0;
                 anyLeft = anyLeft || valid[k];
             }
-        } else if (it.hasDirectPrimitives()) {
+            quadsDone = true;
+        }
+#endif
+        if (oneDirectSphere(it)) {
+            float t[W];
+            const uint32_t lanes = directSphereLanes<W>(it, r, valid, m, t);
+            anyLeft = false;
+            for (int k = 0; k < m; ++k) {
+                directHit[k] = directHit[k] || ((lanes >> k) & 1u);
+                if (directHit[k]) valid[k] = 0;
+                anyLeft = anyLeft || valid[k];
+            }
+        } else if (otherDirectPrimitives(it, quadsDone)) {
             anyLeft = false;
             for (int k = 0; k < m; ++k) {
                 if (!valid[k]) continue;
-                directHit[k] = anyDirectHit(it, *rays[first + k], r.tfar[k]);
+                directHit[k] = anyDirectHit(it, *rays[first + k], r.tfar[k], !quadsDone);
                 if (directHit[k]) valid[k] = 0;
                 anyLeft = anyLeft || valid[k];
             }
@@ -361,13 +454,53 @@ bool sharesVertexArray(const std::vector<Vec3f>& positions) {
     return positions.capacity() > positions.size();
 }
 
+void EmbreeScene::takeDirectParallelograms(const Scene& scene, uint32_t limit) {
+    std::vector<PreparedParallelogram> quads;
+    for (const Shape& shape : scene.shapes) {
+        MeshParallelogram m;
+        if (meshParallelogram(scene, shape, m)) quads.push_back(prepareParallelogram(m));
+    }
+    if (quads.empty() || quads.size() > limit) return;
+    directQuads_ = std::move(quads);
+    std::vector<bool> direct(scene.triangles.size(), false);
+    for (const PreparedParallelogram& q : directQuads_) direct[q.mesh.first] = direct[q.mesh.second] = true;
+    for (uint32_t t = 0; t < uint32_t(scene.triangles.size()); ++t) {
+        if (direct[t]) continue;
+        embreeTriangles_.push_back(scene.triangles[t]);
+        embreeToScene_.push_back(t);
+    }
+}
+
+EmbreeIntersector EmbreeScene::intersector() const {
+    EmbreeIntersector it;
+    it.scene = scene_;
+    it.numTriangles = numTriangles_;
+    it.firstCylinder = firstCylinder_;
+    it.packetWidth = packetWidth_;
+    it.directSpheres = directSpheres_;
+    it.numDirectSpheres = numDirectSpheres_;
+    it.directCylinders = directCylinders_;
+    it.numDirectCylinders = numDirectCylinders_;
+    if (!directQuads_.empty()) {
+        it.directQuads = directQuads_.data();
+        it.numDirectQuads = uint32_t(directQuads_.size());
+        it.embreeTriangles = embreeToScene_.data();
+    }
+    return it;
+}
+
+uint32_t EmbreeScene::directParallelogramCount() const { return uint32_t(directQuads_.size()); }
+
 void EmbreeScene::setTriangleBuffers(RTCGeometryTy* geom, const Scene& scene) {
-    // The index triples are shared as they are. Embree reads a vertex with a 16-byte load, 4 bytes
+    // The index triples are shared as they are, or those left when the direct parallelograms'
+    // are taken out (embreeTriangles_). Embree reads a vertex with a 16-byte load, 4 bytes
     // past its end (it even reads the last vertex's 4 bytes at once, buffer.h checkPadding16), so
     // the positions are shared only when the vector's spare capacity holds those 4 bytes; else
     // they are copied into a buffer Embree pads itself (the geometry then owns that copy).
+    const bool all = directQuads_.empty();
     rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                               scene.triangles.data(), 0, sizeof(Vec3u), numTriangles_);
+                               all ? scene.triangles.data() : embreeTriangles_.data(), 0, sizeof(Vec3u),
+                               all ? numTriangles_ : embreeTriangles_.size());
     sharesVertices_ = sharesVertexArray(scene.positions);
     if (sharesVertices_) {
         rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
@@ -396,7 +529,8 @@ EmbreeScene::EmbreeScene(const Scene& scene, const EmbreeSceneOptions& options)
         scene_ = rtcNewScene(device_);
         check("rtcNewScene");
         rtcSetSceneFlags(scene_, options.robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
-        if (numTriangles_ > 0) {
+        takeDirectParallelograms(scene, options.directParallelograms);
+        if (numTriangles_ > 0 && (directQuads_.empty() || !embreeTriangles_.empty())) {
             RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
             check("rtcNewGeometry(triangle)");
             setTriangleBuffers(geom, scene);

@@ -16,6 +16,8 @@ struct RTCGeometryTy;
 
 namespace caustica {
 
+struct PreparedParallelogram;  // accel/parallelogram_intersect.h
+
 /// Single-ray queries against a committed Embree scene, with the same contract as BvhIntersector:
 /// `intersect` fills `hit` (t, primId, b1 = Embree's u, b2 = v) for the closest hit with t in
 /// (0, ray.tMax) and returns true, leaving `hit` unchanged on a miss; `occluded` reports any hit in
@@ -36,8 +38,14 @@ struct EmbreeIntersector {
     uint32_t numDirectSpheres = 0;
     const Cylinder* directCylinders = nullptr;
     uint32_t numDirectCylinders = 0;
+    // A scene's few parallelogram meshes (EmbreeSceneOptions::directParallelograms), tested as
+    // planes before the spheres; their triangles are not in Embree's triangle geometry, whose
+    // primID k is then scene triangle embreeTriangles[k] (null: k itself).
+    const PreparedParallelogram* directQuads = nullptr;
+    uint32_t numDirectQuads = 0;
+    const uint32_t* embreeTriangles = nullptr;
 
-    bool hasDirectPrimitives() const { return numDirectSpheres + numDirectCylinders > 0; }
+    bool hasDirectPrimitives() const { return numDirectSpheres + numDirectCylinders + numDirectQuads > 0; }
     bool intersect(const Ray& ray, Hit& hit) const;
     bool occluded(const Ray& ray) const;
     /// See intersectPacket / occludedPacket (intersector.h); n <= kPacketSize.
@@ -63,6 +71,14 @@ struct EmbreeSceneOptions {
     /// evening). More of them go to Embree, whose BVH culls them. Both give the same hits (the
     /// same intersectSphere / intersectCylinder decides). Tests set 0 to force user geometry.
     uint32_t directPrimitives = 1;
+    /// Up to this many mesh shapes that are one parallelogram (scene/parallelogram.h: every
+    /// rectangle shape) are tested by caustica before each Embree query, as a plane and two edge
+    /// coordinates (accel/parallelogram_intersect.h, four rays at a time in packets), and their
+    /// triangles left out of Embree's scene. Mitsuba 3 intersects its rectangles analytically too;
+    /// in Embree they are two triangles each under RTC_SCENE_FLAG_ROBUST, whose traversal and
+    /// Pluecker test cost 1.2-1.8x a non-robust one per ray (docs/PERFORMANCE.md). Same surfaces,
+    /// other last bits of t and the barycentrics. More of them, or 0: all stay in Embree.
+    uint32_t directParallelograms = 16;
 };
 
 /// Whether Embree may read `positions` in place (rtcSetSharedGeometryBuffer): its 16-byte vertex
@@ -75,7 +91,8 @@ bool sharesVertexArray(const std::vector<Vec3f>& positions);
 /// copied into a padded Embree buffer only where sharesVertexArray is false), spheres and
 /// cylinders as user geometries 1 and 2 whose callbacks run caustica's own intersectSphere/
 /// intersectCylinder, or, when there are at most `options.directPrimitives` of them, tested by
-/// the intersector itself before each Embree query. Built with RTC_SCENE_FLAG_ROBUST unless
+/// the intersector itself before each Embree query; likewise up to `options.directParallelograms`
+/// parallelogram meshes, whose triangles then stay out of geometry 0 (an index copy of the rest). Built with RTC_SCENE_FLAG_ROBUST unless
 /// `options.robust` is false. Embree reads `scene.triangles`, `scene.positions` (while building),
 /// the callbacks and the direct tests `scene.spheres` and `scene.cylinders`, so `scene` must
 /// outlive this object and its arrays must not be resized
@@ -88,10 +105,9 @@ public:
     EmbreeScene(const EmbreeScene&) = delete;
     EmbreeScene& operator=(const EmbreeScene&) = delete;
 
-    EmbreeIntersector intersector() const {
-        return EmbreeIntersector{scene_,         numTriangles_,     firstCylinder_,   packetWidth_,
-                                 directSpheres_, numDirectSpheres_, directCylinders_, numDirectCylinders_};
-    }
+    EmbreeIntersector intersector() const;
+    /// How many parallelogram shapes the intersector tests itself (options.directParallelograms).
+    uint32_t directParallelogramCount() const;
     /// Rays per Embree packet call: the widest packet Embree runs natively on this CPU (16, 8 or
     /// 4), else 1 (single rays). Narrower ones work too (set EmbreeIntersector::packetWidth).
     int packetWidth() const { return packetWidth_; }
@@ -107,6 +123,7 @@ private:
     void check(const char* what);  // throws caustica::Error if the device reports an error
     void release();
     void setTriangleBuffers(RTCGeometryTy* geom, const Scene& scene);
+    void takeDirectParallelograms(const Scene& scene, uint32_t limit);
     template <class Prim>
     void addUserGeometry(const std::vector<Prim>& prims, unsigned geomId, const char* what);
 
@@ -120,6 +137,9 @@ private:
     uint32_t numDirectSpheres_ = 0;
     const Cylinder* directCylinders_ = nullptr;
     uint32_t numDirectCylinders_ = 0;
+    std::vector<PreparedParallelogram> directQuads_;  // see EmbreeIntersector
+    std::vector<Vec3u> embreeTriangles_;   // the other triangles, when directQuads_ is not empty
+    std::vector<uint32_t> embreeToScene_;  // Embree primID -> scene triangle, idem
     EmbreeIsa isa_ = EmbreeIsa::Widest;
     bool sharesVertices_ = false;
     double buildMilliseconds_ = 0;

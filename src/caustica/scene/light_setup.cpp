@@ -7,6 +7,7 @@
 
 #include "caustica/scene/interaction.h"
 #include "caustica/scene/light_envmap_setup.h"
+#include "caustica/scene/parallelogram.h"
 #include "caustica/util/error.h"
 
 namespace caustica {
@@ -30,48 +31,29 @@ double triangleArea(const Scene& scene, uint32_t t) {
     throw Error("light " + std::to_string(light) + ": " + reason);
 }
 
-/// Light::isQuad and its parallelogram for a mesh of two triangles that share a diagonal and whose
-/// other two corners sum to the diagonal's ends (a parallelogram, within 1e-6 of its size), with
-/// the same front side (flip_normals included) and, if it has shading normals, the same normal at
-/// every vertex (the front side follows the interpolated normal, which must then be constant).
-/// Such a mesh — every rectangle shape — is then sampled without the triangle CDF: the same
-/// uniform density by area, fewer operations per light sample.
+/// Light::isQuad and its parallelogram for a mesh that is one parallelogram (meshParallelogram)
+/// with the same front side on both halves (flip_normals included) and, if it has shading
+/// normals, the same normal at every vertex (the front side follows the interpolated normal, which
+/// must then be constant). Such a mesh — every rectangle shape — is then sampled without the
+/// triangle CDF: the same uniform density by area, fewer operations per light sample.
 void setupQuad(const Scene& scene, Light& light, const Shape& shape) {
     light.isQuad = false;
-    if (shape.primCount != 2) return;
-    const Vec3u ta = scene.triangles[shape.primOffset], tb = scene.triangles[shape.primOffset + 1];
+    MeshParallelogram quad;
+    if (!meshParallelogram(scene, shape, quad)) return;
     if (shape.hasNormals) {
+        const Vec3u ta = scene.triangles[quad.first], tb = scene.triangles[quad.second];
         const Vec3f n = scene.normals[ta.x];
         for (uint32_t v : {ta.y, ta.z, tb.x, tb.y, tb.z})
             if (!(scene.normals[v] == n)) return;
     }
-    const Vec3f a[3] = {scene.positions[ta.x], scene.positions[ta.y], scene.positions[ta.z]};
-    const Vec3f b[3] = {scene.positions[tb.x], scene.positions[tb.y], scene.positions[tb.z]};
-    auto inB = [&](Vec3f p) { return p == b[0] || p == b[1] || p == b[2]; };
-    int notShared = -1, shared = 0;
-    for (int k = 0; k < 3; ++k) {
-        if (inB(a[k]))
-            ++shared;
-        else
-            notShared = k;
-    }
-    if (shared != 2 || notShared < 0) return;
-    const Vec3f corner = a[notShared], s1 = a[(notShared + 1) % 3], s2 = a[(notShared + 2) % 3];
-    Vec3f opposite = b[0];
-    for (const Vec3f& p : b)
-        if (!(p == s1) && !(p == s2)) opposite = p;
-    // A parallelogram: the corners opposite the shared diagonal are symmetric about its middle.
-    const double size = double(length(s1 - s2)) + double(length(s1 - corner)) + double(length(s2 - corner));
-    const Vec3f gap = (corner + opposite) - (s1 + s2);
-    if (!(size > 0) || !(double(length(gap)) <= 1e-6 * size)) return;
     const SceneView view = scene.view();
-    const Vec3f na = trianglePoint(view, shape, shape.primOffset, Float(1) / 3, Float(1) / 3).ng;
-    const Vec3f nb = trianglePoint(view, shape, shape.primOffset + 1, Float(1) / 3, Float(1) / 3).ng;
+    const Vec3f na = trianglePoint(view, shape, quad.first, Float(1) / 3, Float(1) / 3).ng;
+    const Vec3f nb = trianglePoint(view, shape, quad.second, Float(1) / 3, Float(1) / 3).ng;
     if (!(dot(na, nb) > 0)) return;  // the two halves emit to different sides
     light.isQuad = true;
-    light.quadCorner = corner;
-    light.quadEdgeU = s1 - corner;
-    light.quadEdgeV = s2 - corner;
+    light.quadCorner = quad.corner;
+    light.quadEdgeU = quad.edgeU;
+    light.quadEdgeV = quad.edgeV;
     light.quadNormal = na;
 }
 

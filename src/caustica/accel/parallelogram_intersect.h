@@ -1,0 +1,77 @@
+// parallelogram_intersect.h — a ray against a parallelogram (a two-triangle mesh shape that is one,
+// scene/parallelogram.h) as one plane and two edge coordinates, generic over the lane type F
+// (util/lane.h): F = float tests one ray, F = Float4 four rays, each lane to the bit of the float
+// form. The hit is given back as the triangle of the half it falls in and that triangle's
+// barycentrics, so that everything after the query (triangleSurface, the lights) sees the same
+// kind of hit as from a triangle test.
+#pragma once
+
+#include <cstdint>
+
+#include "caustica/scene/parallelogram.h"
+#include "caustica/scene/ray.h"
+#include "caustica/util/lane.h"
+#include "caustica/util/math.h"
+
+namespace caustica {
+
+/// A parallelogram prepared for ray tests: `normal` = cross(edgeU, edgeV) (not unit), and the
+/// dual vectors dualU = cross(edgeV, normal) / |normal|², dualV = cross(normal, edgeU) / |normal|²
+/// that give a point's edge coordinates: u = dot(p - corner, dualU), v = dot(p - corner, dualV).
+struct PreparedParallelogram {
+    Vec3f corner, normal, dualU, dualV;
+    MeshParallelogram mesh;
+};
+
+inline PreparedParallelogram prepareParallelogram(const MeshParallelogram& m) {
+    PreparedParallelogram p;
+    p.corner = m.corner;
+    p.normal = cross(m.edgeU, m.edgeV);
+    const Float inv = 1 / lengthSquared(p.normal);
+    p.dualU = cross(m.edgeV, p.normal) * inv;
+    p.dualV = cross(p.normal, m.edgeU) * inv;
+    p.mesh = m;
+    return p;
+}
+
+namespace parallelogram_detail {
+template <class F>
+CA_HD_FORCE_INLINE Vec3Of<F> splat(const Vec3f& v) {
+    return Vec3Of<F>{lane::splat<F>(v.x), lane::splat<F>(v.y), lane::splat<F>(v.z)};
+}
+}  // namespace parallelogram_detail
+
+/// For each lane: whether the ray o + t·d hits the parallelogram with t in (0, tMax), both sides,
+/// edges included (u, v in [0, 1]); where it does, t, u and v. A ray in the plane misses.
+template <class F>
+CA_HD_FORCE_INLINE MaskOf<F> intersectParallelogram(const Vec3Of<F>& o, const Vec3Of<F>& d, F tMax,
+                                                    const PreparedParallelogram& q, F& t, F& u, F& v) {
+    using parallelogram_detail::splat;
+    const Vec3Of<F> n = splat<F>(q.normal);
+    const Vec3Of<F> toCorner = splat<F>(q.corner) - o;
+    t = dot(toCorner, n) / dot(d, n);  // ±inf or NaN in the plane's direction: rejected below
+    const Vec3Of<F> p = d * t - toCorner;  // the hit point relative to the corner
+    u = dot(p, splat<F>(q.dualU));
+    v = dot(p, splat<F>(q.dualV));
+    const F zero = lane::splat<F>(0), one = lane::splat<F>(1);
+    return (t > zero) & (t < tMax) & (u >= zero) & (v >= zero) & (u <= one) & (v <= one);
+}
+
+/// The triangle of a parallelogram hit at edge coordinates (u, v) and its barycentrics (b1, b2)
+/// as a triangle test reports them (the weights of the triangle's vertices 1 and 2).
+inline void parallelogramHitTriangle(const MeshParallelogram& m, Float u, Float v, uint32_t& triangle, Float& b1,
+                                     Float& b2) {
+    Float w[3];
+    const bool firstHalf = u + v <= 1;
+    const uint8_t* slot = m.slots[firstHalf ? 0 : 1];
+    if (firstHalf) {
+        w[slot[0]] = 1 - u - v, w[slot[1]] = u, w[slot[2]] = v;
+    } else {
+        w[slot[0]] = u + v - 1, w[slot[1]] = 1 - v, w[slot[2]] = 1 - u;
+    }
+    triangle = firstHalf ? m.first : m.second;
+    b1 = w[1];
+    b2 = w[2];
+}
+
+}  // namespace caustica

@@ -19,8 +19,9 @@
 namespace caustica {
 namespace {
 
-constexpr unsigned kTriangleGeomId = 0;
+constexpr unsigned kTriangleGeomId = 0;  // the first run of triangles
 constexpr unsigned kSphereGeomId = 1;
+constexpr unsigned kSecondTriangleRunGeomId = 3;  // the other runs (EmbreeIntersector::triangleRunFirst)
 
 const char* errorName(RTCError code) {
     switch (code) {
@@ -141,8 +142,9 @@ void setRayLane(R& r, int k, const Ray& ray) {
 Hit toHit(const EmbreeIntersector& it, float tfar, unsigned geomID, unsigned primID, float u, float v) {
     Hit hit;
     hit.t = tfar;
-    if (geomID == kTriangleGeomId) {
-        hit.primId = it.embreeTriangles ? it.embreeTriangles[primID] : primID;
+    if (geomID == kTriangleGeomId || geomID >= kSecondTriangleRunGeomId) {
+        const uint32_t run = geomID == kTriangleGeomId ? 0 : geomID - kSecondTriangleRunGeomId + 1;
+        hit.primId = (it.triangleRunFirst ? it.triangleRunFirst[run] : 0) + primID;
         hit.b1 = u;
         hit.b2 = v;
     } else {
@@ -464,10 +466,15 @@ void EmbreeScene::takeDirectParallelograms(const Scene& scene, uint32_t limit) {
     directQuads_ = std::move(quads);
     std::vector<bool> direct(scene.triangles.size(), false);
     for (const PreparedParallelogram& q : directQuads_) direct[q.mesh.first] = direct[q.mesh.second] = true;
+    runFirst_.clear();
+    runCount_.clear();
     for (uint32_t t = 0; t < uint32_t(scene.triangles.size()); ++t) {
         if (direct[t]) continue;
-        embreeTriangles_.push_back(scene.triangles[t]);
-        embreeToScene_.push_back(t);
+        if (runFirst_.empty() || runFirst_.back() + runCount_.back() != t) {
+            runFirst_.push_back(t);
+            runCount_.push_back(0);
+        }
+        ++runCount_.back();
     }
 }
 
@@ -484,33 +491,38 @@ EmbreeIntersector EmbreeScene::intersector() const {
     if (!directQuads_.empty()) {
         it.directQuads = directQuads_.data();
         it.numDirectQuads = uint32_t(directQuads_.size());
-        it.embreeTriangles = embreeToScene_.data();
+        it.triangleRunFirst = runFirst_.empty() ? nullptr : runFirst_.data();
     }
     return it;
 }
 
 uint32_t EmbreeScene::directParallelogramCount() const { return uint32_t(directQuads_.size()); }
 
-void EmbreeScene::setTriangleBuffers(RTCGeometryTy* geom, const Scene& scene) {
-    // The index triples are shared as they are, or those left when the direct parallelograms'
-    // are taken out (embreeTriangles_). Embree reads a vertex with a 16-byte load, 4 bytes
-    // past its end (it even reads the last vertex's 4 bytes at once, buffer.h checkPadding16), so
-    // the positions are shared only when the vector's spare capacity holds those 4 bytes; else
-    // they are copied into a buffer Embree pads itself (the geometry then owns that copy).
-    const bool all = directQuads_.empty();
-    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                               all ? scene.triangles.data() : embreeTriangles_.data(), 0, sizeof(Vec3u),
-                               all ? numTriangles_ : embreeTriangles_.size());
+void EmbreeScene::addTriangleRun(const Scene& scene, uint32_t first, uint32_t count, unsigned geomId) {
+    RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+    check("rtcNewGeometry(triangle)");
+    // The index triples [first, first + count) are shared as they are. Embree reads a vertex with
+    // a 16-byte load, 4 bytes past its end (it even reads the last vertex's 4 bytes at once,
+    // buffer.h checkPadding16), so the positions are shared only when the vector's spare capacity
+    // holds those 4 bytes; else they are copied into a buffer Embree pads itself (the geometry
+    // then owns that copy).
+    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, scene.triangles.data(),
+                               size_t(first) * sizeof(Vec3u), sizeof(Vec3u), count);
     sharesVertices_ = sharesVertexArray(scene.positions);
     if (sharesVertices_) {
         rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                    scene.positions.data(), 0, sizeof(Vec3f), scene.positions.size());
-        return;
+    } else {
+        void* vertices = rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                 sizeof(Vec3f), scene.positions.size());
+        if (vertices)
+            std::memcpy(vertices, scene.positions.data(), scene.positions.size() * sizeof(Vec3f));
     }
-    void* vertices = rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                             sizeof(Vec3f), scene.positions.size());
-    if (vertices)
-        std::memcpy(vertices, scene.positions.data(), scene.positions.size() * sizeof(Vec3f));
+    check("triangle buffers");
+    rtcCommitGeometry(geom);
+    rtcAttachGeometryByID(scene_, geom, geomId);
+    rtcReleaseGeometry(geom);
+    check("triangle geometry");
 }
 
 EmbreeScene::EmbreeScene(const Scene& scene, const EmbreeSceneOptions& options)
@@ -530,15 +542,14 @@ EmbreeScene::EmbreeScene(const Scene& scene, const EmbreeSceneOptions& options)
         check("rtcNewScene");
         rtcSetSceneFlags(scene_, options.robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
         takeDirectParallelograms(scene, options.directParallelograms);
-        if (numTriangles_ > 0 && (directQuads_.empty() || !embreeTriangles_.empty())) {
-            RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-            check("rtcNewGeometry(triangle)");
-            setTriangleBuffers(geom, scene);
-            check("triangle buffers");
-            rtcCommitGeometry(geom);
-            rtcAttachGeometryByID(scene_, geom, kTriangleGeomId);
-            rtcReleaseGeometry(geom);
-            check("triangle geometry");
+        if (directQuads_.empty()) {
+            if (numTriangles_ > 0) addTriangleRun(scene, 0, numTriangles_, kTriangleGeomId);
+        } else {
+            // Few runs (at most one more than parallelograms); when the vertices are not shared,
+            // each run's geometry holds its own copy of them.
+            for (size_t r = 0; r < runFirst_.size(); ++r)
+                addTriangleRun(scene, runFirst_[r], runCount_[r],
+                               r == 0 ? kTriangleGeomId : unsigned(kSecondTriangleRunGeomId + r - 1));
         }
         if (scene.spheres.size() + scene.cylinders.size() <= options.directPrimitives) {
             directSpheres_ = scene.spheres.data();

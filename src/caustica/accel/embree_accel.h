@@ -39,11 +39,12 @@ struct EmbreeIntersector {
     const Cylinder* directCylinders = nullptr;
     uint32_t numDirectCylinders = 0;
     // A scene's few parallelogram meshes (EmbreeSceneOptions::directParallelograms), tested as
-    // planes before the spheres; their triangles are not in Embree's triangle geometry, whose
-    // primID k is then scene triangle embreeTriangles[k] (null: k itself).
+    // planes before the spheres. Their triangles are not in Embree's scene: the others are, as
+    // runs of consecutive scene triangles, run r (geometry 0 for r = 0, else 2 + r) starting at
+    // scene triangle triangleRunFirst[r] (null: one run, geometry 0, every triangle).
     const PreparedParallelogram* directQuads = nullptr;
     uint32_t numDirectQuads = 0;
-    const uint32_t* embreeTriangles = nullptr;
+    const uint32_t* triangleRunFirst = nullptr;
 
     bool hasDirectPrimitives() const { return numDirectSpheres + numDirectCylinders + numDirectQuads > 0; }
     bool intersect(const Ray& ray, Hit& hit) const;
@@ -92,7 +93,8 @@ bool sharesVertexArray(const std::vector<Vec3f>& positions);
 /// cylinders as user geometries 1 and 2 whose callbacks run caustica's own intersectSphere/
 /// intersectCylinder, or, when there are at most `options.directPrimitives` of them, tested by
 /// the intersector itself before each Embree query; likewise up to `options.directParallelograms`
-/// parallelogram meshes, whose triangles then stay out of geometry 0 (an index copy of the rest). Built with RTC_SCENE_FLAG_ROBUST unless
+/// parallelogram meshes, whose triangles then stay out of Embree's scene (the others go in as
+/// runs of consecutive triangles, each a triangle geometry over the same shared arrays). Built with RTC_SCENE_FLAG_ROBUST unless
 /// `options.robust` is false. Embree reads `scene.triangles`, `scene.positions` (while building),
 /// the callbacks and the direct tests `scene.spheres` and `scene.cylinders`, so `scene` must
 /// outlive this object and its arrays must not be resized
@@ -122,7 +124,7 @@ public:
 private:
     void check(const char* what);  // throws caustica::Error if the device reports an error
     void release();
-    void setTriangleBuffers(RTCGeometryTy* geom, const Scene& scene);
+    void addTriangleRun(const Scene& scene, uint32_t first, uint32_t count, unsigned geomId);
     void takeDirectParallelograms(const Scene& scene, uint32_t limit);
     template <class Prim>
     void addUserGeometry(const std::vector<Prim>& prims, unsigned geomId, const char* what);
@@ -138,8 +140,7 @@ private:
     const Cylinder* directCylinders_ = nullptr;
     uint32_t numDirectCylinders_ = 0;
     std::vector<PreparedParallelogram> directQuads_;  // see EmbreeIntersector
-    std::vector<Vec3u> embreeTriangles_;   // the other triangles, when directQuads_ is not empty
-    std::vector<uint32_t> embreeToScene_;  // Embree primID -> scene triangle, idem
+    std::vector<uint32_t> runFirst_, runCount_;  // Embree's runs of triangles (see EmbreeIntersector)
     EmbreeIsa isa_ = EmbreeIsa::Widest;
     bool sharesVertices_ = false;
     double buildMilliseconds_ = 0;

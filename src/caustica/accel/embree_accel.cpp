@@ -385,6 +385,19 @@ void intersectPackets(const EmbreeIntersector& it, int n, const Ray* const* rays
     }, coherent);
 }
 
+/// Lanes whose bit is set in `lanes` are occluded by a direct primitive: marked in directHit and
+/// left out of Embree's query (valid 0). Returns whether any lane of [0, m) is still to be traced.
+template <int W>
+bool markOccluded(uint32_t lanes, int m, int (&valid)[W], bool (&directHit)[W]) {
+    bool anyLeft = false;
+    for (int k = 0; k < m; ++k) {
+        directHit[k] = directHit[k] || ((lanes >> k) & 1u);
+        if (directHit[k]) valid[k] = 0;
+        anyLeft = anyLeft || valid[k];
+    }
+    return anyLeft;
+}
+
 template <int W>
 void occludedPackets(const EmbreeIntersector& it, int n, const Ray* const* rays, uint32_t* occluded) {
     forEachPacket<W>(n, [&](RTCIntersectContext& context, int first, int m) {
@@ -397,25 +410,13 @@ void occludedPackets(const EmbreeIntersector& it, int n, const Ray* const* rays,
 #if CA_FLOAT4_SSE
         if (it.numDirectQuads > 0) {
             Hit unused[W];
-            const uint32_t lanes = directQuadLanes<W>(it, r, valid, m, unused);
-            anyLeft = false;
-            for (int k = 0; k < m; ++k) {
-                directHit[k] = (lanes >> k) & 1u;
-                if (directHit[k]) valid[k] = 0;
-                anyLeft = anyLeft || valid[k];
-            }
+            anyLeft = markOccluded<W>(directQuadLanes<W>(it, r, valid, m, unused), m, valid, directHit);
             quadsDone = true;
         }
 #endif
         if (oneDirectSphere(it)) {
             float t[W];
-            const uint32_t lanes = directSphereLanes<W>(it, r, valid, m, t);
-            anyLeft = false;
-            for (int k = 0; k < m; ++k) {
-                directHit[k] = directHit[k] || ((lanes >> k) & 1u);
-                if (directHit[k]) valid[k] = 0;
-                anyLeft = anyLeft || valid[k];
-            }
+            anyLeft = markOccluded<W>(directSphereLanes<W>(it, r, valid, m, t), m, valid, directHit);
         } else if (otherDirectPrimitives(it, quadsDone)) {
             anyLeft = false;
             for (int k = 0; k < m; ++k) {
@@ -508,7 +509,6 @@ void EmbreeScene::addTriangleRun(const Scene& scene, uint32_t first, uint32_t co
     // then owns that copy).
     rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, scene.triangles.data(),
                                size_t(first) * sizeof(Vec3u), sizeof(Vec3u), count);
-    sharesVertices_ = sharesVertexArray(scene.positions);
     if (sharesVertices_) {
         rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                    scene.positions.data(), 0, sizeof(Vec3f), scene.positions.size());
@@ -542,6 +542,8 @@ EmbreeScene::EmbreeScene(const Scene& scene, const EmbreeSceneOptions& options)
         check("rtcNewScene");
         rtcSetSceneFlags(scene_, options.robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
         takeDirectParallelograms(scene, options.directParallelograms);
+        // addTriangleRun's choice, made once for all runs (false when Embree is given no triangle).
+        sharesVertices_ = numTriangles_ > 2 * directQuads_.size() && sharesVertexArray(scene.positions);
         if (directQuads_.empty()) {
             if (numTriangles_ > 0) addTriangleRun(scene, 0, numTriangles_, kTriangleGeomId);
         } else {

@@ -15,24 +15,22 @@
 
 namespace caustica {
 
+/// A parallelogram's plane and edge vectors in every lane of F (for F = float, one of each).
+template <class F>
+struct ParallelogramLanes {
+    Vec3Of<F> corner, normal, dualU, dualV;
+};
+
 /// A parallelogram prepared for ray tests: `normal` = cross(edgeU, edgeV) (not unit), and the
 /// dual vectors dualU = cross(edgeV, normal) / |normal|², dualV = cross(normal, edgeU) / |normal|²
 /// that give a point's edge coordinates: u = dot(p - corner, dualU), v = dot(p - corner, dualV).
+/// `lanes4` holds the same four vectors splat across four lanes: a packet's rays all meet the
+/// same few parallelograms, so the splat is made once, not at every four-ray test.
 struct PreparedParallelogram {
     Vec3f corner, normal, dualU, dualV;
     MeshParallelogram mesh;
+    ParallelogramLanes<Float4> lanes4;
 };
-
-inline PreparedParallelogram prepareParallelogram(const MeshParallelogram& m) {
-    PreparedParallelogram p;
-    p.corner = m.corner;
-    p.normal = cross(m.edgeU, m.edgeV);
-    const Float inv = 1 / lengthSquared(p.normal);
-    p.dualU = cross(m.edgeV, p.normal) * inv;
-    p.dualV = cross(p.normal, m.edgeU) * inv;
-    p.mesh = m;
-    return p;
-}
 
 namespace parallelogram_detail {
 template <class F>
@@ -41,18 +39,39 @@ CA_HD_FORCE_INLINE Vec3Of<F> splat(const Vec3f& v) {
 }
 }  // namespace parallelogram_detail
 
+inline PreparedParallelogram prepareParallelogram(const MeshParallelogram& m) {
+    using parallelogram_detail::splat;
+    PreparedParallelogram p;
+    p.corner = m.corner;
+    p.normal = cross(m.edgeU, m.edgeV);
+    const Float inv = 1 / lengthSquared(p.normal);
+    p.dualU = cross(m.edgeV, p.normal) * inv;
+    p.dualV = cross(p.normal, m.edgeU) * inv;
+    p.mesh = m;
+    p.lanes4 = {splat<Float4>(p.corner), splat<Float4>(p.normal), splat<Float4>(p.dualU), splat<Float4>(p.dualV)};
+    return p;
+}
+
+/// The prepared parallelogram's vectors as F's lanes: for four lanes the stored splat.
+template <class F>
+CA_HD_FORCE_INLINE decltype(auto) lanesOf(const PreparedParallelogram& q) {
+    if constexpr (LaneTraits<F>::width == 1)
+        return ParallelogramLanes<F>{q.corner, q.normal, q.dualU, q.dualV};
+    else
+        return (q.lanes4);  // a reference, not a copy
+}
+
 /// For each lane: whether the ray o + t·d hits the parallelogram with t in (0, tMax), both sides,
 /// edges included (u, v in [0, 1]); where it does, t, u and v. A ray in the plane misses.
 template <class F>
 CA_HD_FORCE_INLINE MaskOf<F> intersectParallelogram(const Vec3Of<F>& o, const Vec3Of<F>& d, F tMax,
                                                     const PreparedParallelogram& q, F& t, F& u, F& v) {
-    using parallelogram_detail::splat;
-    const Vec3Of<F> n = splat<F>(q.normal);
-    const Vec3Of<F> toCorner = splat<F>(q.corner) - o;
-    t = dot(toCorner, n) / dot(d, n);  // ±inf or NaN in the plane's direction: rejected below
-    const Vec3Of<F> p = d * t - toCorner;  // the hit point relative to the corner
-    u = dot(p, splat<F>(q.dualU));
-    v = dot(p, splat<F>(q.dualV));
+    const ParallelogramLanes<F>& l = lanesOf<F>(q);
+    const Vec3Of<F> toCorner = l.corner - o;
+    t = dot(toCorner, l.normal) / dot(d, l.normal);  // ±inf or NaN in the plane's direction: rejected below
+    const Vec3Of<F> p = d * t - toCorner;            // the hit point relative to the corner
+    u = dot(p, l.dualU);
+    v = dot(p, l.dualV);
     const F zero = lane::splat<F>(0), one = lane::splat<F>(1);
     return (t > zero) & (t < tMax) & (u >= zero) & (v >= zero) & (u <= one) & (v <= one);
 }

@@ -2,10 +2,12 @@
 // force in the shared query tests): every point sits in exactly one leaf, in its own cell's
 // bucket; leaves hold at most leafPoints points; nodes bound their points and radii; each leaf's
 // level follows the documented rule; a clustered set gets grids at several levels; memory is
-// what memoryBytes() says; the build is the same on 1 and 2 threads.
+// what memoryBytes() says; the build is the same on 1 and 2 threads; the leaves' statistics do
+// not depend on the chunks measureLeaves cuts them into.
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <map>
 #include <set>
 #include <tuple>
@@ -184,6 +186,107 @@ TEST(MultiHashTest, SameStructureOnOneAndTwoThreads) {
         return out;
     };
     EXPECT_EQ(layout(1), layout(2));
+}
+
+using spatial_detail::MultiHashLeafStats;
+
+/// measureLeaves' statistics for one leaf as one serial pass over its points (the kernel before it
+/// was cut into chunks): the box, the largest radius and the level by the documented rule.
+MultiHashLeafStats leafStatsInOnePass(const PointSet& points, const MortonLattice& lattice,
+                                      const std::vector<uint64_t>& codes, const std::vector<uint32_t>& order,
+                                      const spatial_detail::MultiHashLeafRange& range, MultiHashCellRule rule,
+                                      Float pointsPerCell) {
+    MultiHashLeafStats s;
+    for (int a = 0; a < 3; ++a) s.qlo[a] = kLatticeMax;
+    uint32_t newCells[kLatticeBits + 1] = {};
+    for (uint32_t k = range.start; k < range.end; ++k) {
+        for (int a = 0; a < 3; ++a) {
+            const uint32_t q = lattice.quantize(a, points.positions[order[k]][a]);
+            s.qlo[a] = std::min(s.qlo[a], q);
+            s.qhi[a] = std::max(s.qhi[a], q);
+        }
+        s.maxRadius = std::max(s.maxRadius, points.radiusOf(order[k]));
+        if (k == range.start) continue;
+        uint32_t j = 0;
+        while (j <= uint32_t(kLatticeBits) &&
+               (codes[k] >> (kMortonBits - 3 * j)) == (codes[k - 1] >> (kMortonBits - 3 * j)))
+            ++j;
+        if (j <= uint32_t(kLatticeBits)) ++newCells[j];
+    }
+    uint32_t occupiedAt[kLatticeBits + 1];
+    uint32_t occupied = 1;
+    for (int j = 0; j <= kLatticeBits; ++j) occupiedAt[j] = occupied += newCells[j];
+    s.level = spatial_detail::chooseLeafLevel(rule, range.end - range.start, range.depth, pointsPerCell, occupiedAt,
+                                              s.maxRadius, lattice.cellWidth);
+    s.occupied = occupiedAt[s.level];
+    return s;
+}
+
+TEST(MultiHashTest, LeafStatisticsDoNotDependOnTheChunkSize) {
+    // measureLeaves cuts each leaf into chunks of points (one work item each) and merges them per
+    // leaf: every chunk size must give what one pass over each leaf gives, field for field.
+    std::vector<Vec3f> points = causticInARoom(6000, 3000, 11);
+    points.insert(points.end(), 200, Vec3f(0.7f, 0.7f, 0.7f));  // a leaf's worth of equal codes
+    const std::vector<Float> radii = randomRadii(points.size(), 12, 0.f, 0.03f);
+    const DevicePoints dev(points, 0.01f, radii);
+    const PointSet set = dev.set();
+    MortonLattice lattice;
+    Bounds3f box;
+    for (const Vec3f& p : points) box.extend(p);
+    const Float side = maxComponent(box.diagonal());
+    lattice.lo = box.lo;
+    lattice.scale = Float(1u << kLatticeBits) / side;
+    lattice.cellWidth = side / Float(1u << kLatticeBits);
+    std::vector<uint32_t> order(points.size());
+    std::vector<uint64_t> keyOf(points.size());
+    for (uint32_t i = 0; i < points.size(); ++i) {
+        order[i] = i;
+        keyOf[i] = mortonCode48(lattice.quantize(0, points[i].x), lattice.quantize(1, points[i].y),
+                                lattice.quantize(2, points[i].z));
+    }
+    std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return keyOf[a] < keyOf[b]; });
+    std::vector<uint64_t> codes(points.size());
+    for (size_t k = 0; k < order.size(); ++k) codes[k] = keyOf[order[k]];
+    const spatial_detail::MultiHashTopology topology(codes, 700);  // leaves of up to 700 points
+    ASSERT_GT(topology.leaves.size(), 8u);
+    for (const MultiHashCellRule rule : {MultiHashCellRule::Density, MultiHashCellRule::Radius}) {
+        for (const uint32_t chunk : {1u, 3u, 128u, 700u, 1u << 20}) {
+            std::vector<MultiHashLeafStats> stats(topology.leaves.size());
+            spatial_detail::measureLeaves(CpuExec{}, set, lattice, codes.data(), order.data(), topology.leaves, rule,
+                                          4.f, stats.data(), chunk);
+            for (size_t l = 0; l < stats.size(); ++l) {
+                const MultiHashLeafStats want =
+                    leafStatsInOnePass(set, lattice, codes, order, topology.leaves[l], rule, 4.f);
+                const MultiHashLeafStats& got = stats[l];
+                SCOPED_TRACE(::testing::Message() << "chunk " << chunk << ", leaf " << l);
+                for (int a = 0; a < 3; ++a) {
+                    EXPECT_EQ(got.qlo[a], want.qlo[a]);
+                    EXPECT_EQ(got.qhi[a], want.qhi[a]);
+                }
+                EXPECT_EQ(got.maxRadius, want.maxRadius);
+                EXPECT_EQ(got.level, want.level);
+                EXPECT_EQ(got.occupied, want.occupied);
+            }
+        }
+    }
+}
+
+TEST(MultiHashTest, LeafChunksCoverEachLeafOnce) {
+    const std::vector<spatial_detail::MultiHashLeafRange> leaves = {{0, 5, 3}, {5, 6, 4}, {6, 300, 2}};
+    std::vector<spatial_detail::MultiHashChunk> chunks;
+    std::vector<uint32_t> first;
+    spatial_detail::leafChunks(leaves, 128, chunks, first);
+    ASSERT_EQ(first, (std::vector<uint32_t>{0, 1, 2, 5}));
+    uint32_t next = 0;
+    for (size_t l = 0; l < leaves.size(); ++l)
+        for (uint32_t c = first[l]; c < first[l + 1]; ++c) {
+            EXPECT_EQ(chunks[c].start, next);
+            EXPECT_EQ(chunks[c].leafStart, leaves[l].start);
+            EXPECT_LE(chunks[c].end - chunks[c].start, 128u);
+            EXPECT_GT(chunks[c].end, chunks[c].start);
+            next = chunks[c].end;
+        }
+    EXPECT_EQ(next, 300u);
 }
 
 }  // namespace

@@ -292,7 +292,8 @@ void writeBucketKeys(Exec exec, size_t n, MultiHashView view, const uint32_t* or
 
 /// A multi-level hash table over a PointSet (see point_set.h for the interface). Build: the
 /// points' cube, Morton codes and one radix sort of them; the tree over the sorted codes on the
-/// host (MultiHashTopology: about 2n / leafPoints nodes); a kernel per leaf choosing its level;
+/// host (MultiHashTopology: about 2n / leafPoints nodes); kernels per chunk of points and per leaf
+/// choosing each leaf's level (measureLeaves);
 /// a radix sort of the points by bucket. Memory: 4 bytes per point, 4 per bucket (2 x the
 /// occupied cells, rounded up to powers of two per leaf), 36 per node and 44 per leaf.
 class MultiHash {
@@ -333,10 +334,9 @@ public:
         MultiHashTopology topology(hostCodes, options.leafPoints);
 
         // Per leaf: box, radius, level (device); then buckets and records (host).
-        const Buffer<MultiHashLeafRange> ranges(device, topology.leaves);
         Buffer<MultiHashLeafStats> statsBuffer(device, topology.leaves.size());
-        measureLeaves(exec, points, lattice, codes.data(), m.order_.data(), ranges.data(), topology.leaves.size(),
-                      options.cellRule, options.pointsPerCell, statsBuffer.data());
+        measureLeaves(exec, points, lattice, codes.data(), m.order_.data(), topology.leaves, options.cellRule,
+                      options.pointsPerCell, statsBuffer.data());
         const std::vector<MultiHashLeafStats> stats = statsBuffer.toHost();
         topology.fillBoxes(stats);
         std::vector<MultiHashLeaf> leaves(stats.size());

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "caustica/parallel/buffer.h"
 #include "caustica/parallel/launch.h"
 #include "caustica/spatial/point_set.h"
 
@@ -119,24 +120,68 @@ CA_HD_INLINE uint32_t chooseLeafLevel(MultiHashCellRule rule, uint32_t count, ui
     return rule == MultiHashCellRule::Radius ? radius : min(radius, density);
 }
 
-/// One work item per leaf: its box, largest radius and level, in one pass over its points in
-/// Morton order (two neighbours differ at every level from the first at which their codes'
-/// prefixes differ, so the occupied cells of all levels come from one histogram).
+/// Points per work item of measureLeaves: each leaf's range is cut into chunks of at most this
+/// many points, each summarised by one work item, before a work item per leaf merges its chunks.
+/// One work item per leaf walked up to MultiHashOptions::leafPoints (4096) points in one serial
+/// loop: a GPU ran that as a few dozen long threads (3.5 ms an SPPM iteration on an H200,
+/// docs/PERFORMANCE.md 2026-11-30); in chunks the same work spreads over thousands of threads.
+inline constexpr uint32_t kLeafChunkPoints = 128;
+
+/// A chunk of a leaf's range [start, end) of the Morton order; leafStart is the leaf's first point.
+struct MultiHashChunk {
+    uint32_t start = 0, end = 0, leafStart = 0;
+};
+
+/// What a chunk's points give their leaf: their integer box, largest radius, and how many of them
+/// first differ from their predecessor in the leaf at each level (see measureLeaves).
+struct MultiHashChunkStats {
+    uint32_t qlo[3] = {kLatticeMax, kLatticeMax, kLatticeMax}, qhi[3] = {0, 0, 0};
+    Float maxRadius = 0;
+    uint32_t newCells[kLatticeBits + 1] = {};
+};
+
+/// The leaves' ranges cut into chunks of at most chunkPoints points, in leaf order: leaf l's
+/// chunks are [firstChunk[l], firstChunk[l + 1]).
+inline void leafChunks(const std::vector<MultiHashLeafRange>& leaves, uint32_t chunkPoints,
+                       std::vector<MultiHashChunk>& chunks, std::vector<uint32_t>& firstChunk) {
+    chunkPoints = chunkPoints < 1 ? 1 : chunkPoints;
+    chunks.clear();
+    firstChunk.assign(1, 0);
+    for (const MultiHashLeafRange& leaf : leaves) {
+        for (uint32_t start = leaf.start; start < leaf.end; start += min(chunkPoints, leaf.end - start))
+            chunks.push_back(MultiHashChunk{start, start + min(chunkPoints, leaf.end - start), leaf.start});
+        firstChunk.push_back(uint32_t(chunks.size()));
+    }
+}
+
+/// Each leaf's box, largest radius and level, from one pass over its points in Morton order (two
+/// neighbours differ at every level from the first at which their codes' prefixes differ, so the
+/// occupied cells of all levels come from one histogram): a work item per chunk of the points
+/// (leafChunks), then a work item per leaf merging its chunks. Minima, maxima and counts, so the
+/// statistics do not depend on the chunk size (tests/spatial/multi_hash_test.cpp).
 template <class Exec>
 void measureLeaves(Exec exec, PointSet points, MortonLattice lattice, const uint64_t* codes,
-                   const uint32_t* order, const MultiHashLeafRange* ranges, size_t leafCount,
-                   MultiHashCellRule rule, Float pointsPerCell, MultiHashLeafStats* stats) {
+                   const uint32_t* order, const std::vector<MultiHashLeafRange>& leafRanges,
+                   MultiHashCellRule rule, Float pointsPerCell, MultiHashLeafStats* stats,
+                   uint32_t chunkPoints = kLeafChunkPoints) {
+    const Device device = Exec::device();
+    std::vector<MultiHashChunk> hostChunks;
+    std::vector<uint32_t> hostFirstChunk;
+    leafChunks(leafRanges, chunkPoints, hostChunks, hostFirstChunk);
+    const Buffer<MultiHashLeafRange> rangeBuffer(device, leafRanges);
+    const Buffer<MultiHashChunk> chunkBuffer(device, hostChunks);
+    const Buffer<uint32_t> firstChunkBuffer(device, hostFirstChunk);
+    Buffer<MultiHashChunkStats> chunkStatsBuffer(device, hostChunks.size());
+    const MultiHashLeafRange* ranges = rangeBuffer.data();
+    const MultiHashChunk* chunks = chunkBuffer.data();
+    const uint32_t* firstChunk = firstChunkBuffer.data();
+    MultiHashChunkStats* chunkStats = chunkStatsBuffer.data();
     launch(
-        exec, "spatial.multihash_leaves", leafCount,
-        [=] CA_HD(size_t l) {
-            const MultiHashLeafRange range = ranges[l];
-            MultiHashLeafStats s;
-            uint32_t newCells[kLatticeBits + 1] = {};  // neighbours first differing at level j
-            for (int a = 0; a < 3; ++a) {
-                s.qlo[a] = kLatticeMax;
-                s.qhi[a] = 0;
-            }
-            for (uint32_t k = range.start; k < range.end; ++k) {
+        exec, "spatial.multihash_chunks", hostChunks.size(),
+        [=] CA_HD(size_t c) {
+            const MultiHashChunk chunk = chunks[c];
+            MultiHashChunkStats s;
+            for (uint32_t k = chunk.start; k < chunk.end; ++k) {
                 const uint32_t i = order[k];
                 const Vec3f p = points.positions[i];
                 for (int a = 0; a < 3; ++a) {
@@ -145,16 +190,38 @@ void measureLeaves(Exec exec, PointSet points, MortonLattice lattice, const uint
                     s.qhi[a] = max(s.qhi[a], q);
                 }
                 s.maxRadius = max(s.maxRadius, points.radiusOf(i));
-                if (k == range.start) continue;
-                uint32_t j = 0;  // the first level whose cells tell the two apart
+                if (k == chunk.leafStart) continue;
+                uint32_t j = 0;  // the first level whose cells tell point k from point k - 1
                 while (j <= uint32_t(kLatticeBits) &&
                        (codes[k] >> (kMortonBits - 3 * j)) == (codes[k - 1] >> (kMortonBits - 3 * j)))
                     ++j;
-                if (j <= uint32_t(kLatticeBits)) ++newCells[j];
+                if (j <= uint32_t(kLatticeBits)) ++s.newCells[j];
+            }
+            chunkStats[c] = s;
+        },
+        16);
+    launch(
+        exec, "spatial.multihash_leaves", leafRanges.size(),
+        [=] CA_HD(size_t l) {
+            MultiHashLeafStats s;
+            uint32_t newCells[kLatticeBits + 1] = {};
+            for (int a = 0; a < 3; ++a) {
+                s.qlo[a] = kLatticeMax;
+                s.qhi[a] = 0;
+            }
+            for (uint32_t c = firstChunk[l]; c < firstChunk[l + 1]; ++c) {
+                const MultiHashChunkStats& part = chunkStats[c];
+                for (int a = 0; a < 3; ++a) {
+                    s.qlo[a] = min(s.qlo[a], part.qlo[a]);
+                    s.qhi[a] = max(s.qhi[a], part.qhi[a]);
+                }
+                s.maxRadius = max(s.maxRadius, part.maxRadius);
+                for (int j = 0; j <= kLatticeBits; ++j) newCells[j] += part.newCells[j];
             }
             uint32_t occupiedAt[kLatticeBits + 1];
             uint32_t occupied = 1;
             for (int j = 0; j <= kLatticeBits; ++j) occupiedAt[j] = occupied += newCells[j];
+            const MultiHashLeafRange range = ranges[l];
             s.level = chooseLeafLevel(rule, range.end - range.start, range.depth, pointsPerCell, occupiedAt,
                                       s.maxRadius, lattice.cellWidth);
             s.occupied = occupiedAt[s.level];

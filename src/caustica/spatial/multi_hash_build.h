@@ -168,6 +168,8 @@ void measureLeaves(Exec exec, PointSet points, MortonLattice lattice, const uint
     std::vector<MultiHashChunk> hostChunks;
     std::vector<uint32_t> hostFirstChunk;
     leafChunks(leafRanges, chunkPoints, hostChunks, hostFirstChunk);
+    // These buffers are freed when this returns, right after the launches: on a GPU the backend's
+    // cudaFree waits for the device first (cuda/primitives_cuda.cu), as the caller's toHost would.
     const Buffer<MultiHashLeafRange> rangeBuffer(device, leafRanges);
     const Buffer<MultiHashChunk> chunkBuffer(device, hostChunks);
     const Buffer<uint32_t> firstChunkBuffer(device, hostFirstChunk);

@@ -127,8 +127,11 @@ size_t compareGroups(const Scene& scene, const SceneView& view, const Intersecto
     return groups;
 }
 
-TEST(ShadeLanes, FourPathsGetTheBitsOfEachPathShadedAlone) {
-    const Scene scene = makeRectangleLitScene(24);
+/// The box of one-sided walls, and the same with twosided walls and a panel seen from both sides.
+class ShadeLanesScenes : public ::testing::TestWithParam<bool> {};
+
+TEST_P(ShadeLanesScenes, FourPathsGetTheBitsOfEachPathShadedAlone) {
+    const Scene scene = makeRectangleLitScene(24, GetParam());
     for (AccelKind kind : {AccelKind::Embree, AccelKind::Bvh}) {
         const Accel accel(scene, kind);
         ASSERT_TRUE(allLightsAreQuads(accel.sceneView()));
@@ -150,6 +153,42 @@ TEST(ShadeLanes, FourPathsGetTheBitsOfEachPathShadedAlone) {
             }
         });
     }
+}
+
+INSTANTIATE_TEST_SUITE_P(Walls, ShadeLanesScenes, ::testing::Values(false, true),
+                         [](const auto& info) { return info.param ? "TwoSided" : "OneSided"; });
+
+TEST(ShadeLanes, TakesTwoSidedDiffuseVerticesBothWays) {
+    // Both sides of the twosided panel and walls are hit, and every such vertex is eligible.
+    const Scene scene = makeRectangleLitScene(24, true);
+    const Accel accel(scene, AccelKind::Bvh);
+    const SceneView view = accel.sceneView();
+    PathSettings settings;
+    settings.maxDepth = 16;
+    size_t front = 0, back = 0;
+    accel.visit([&](const auto& it) {
+        const size_t pixels = size_t(scene.film.width) * size_t(scene.film.height);
+        for (size_t p = 0; p < pixels; ++p) {
+            PathState path;
+            IndependentSampler sampler = cameraSample(scene.camera, p, scene.film.width, 3, 41).sampler;
+            if (!startPath(path, cameraSample(scene.camera, p, scene.film.width, 3, 41).ray, settings)) continue;
+            for (int bounce = 0; bounce < 6; ++bounce) {
+                Hit hit;
+                if (!it.intersect(path.ray, hit)) break;
+                if (hit.primId < view.numTriangles() &&
+                    view.bsdfs[view.shapes[view.triangleShape[hit.primId]].bsdf].type == BsdfType::TwoSided) {
+                    EXPECT_TRUE(diffuseQuadEligible(view, path, hit, settings));
+                    const SurfaceInteraction si = computeInteraction(view, path.ray, hit);
+                    (dot(-path.ray.d, si.ns) < 0 ? back : front) += 1;
+                }
+                ShadowRay shadow;
+                bool hasShadow = false;
+                if (!shadeHit(view, path, hit, sampler, settings, shadow, hasShadow)) break;
+            }
+        }
+    });
+    EXPECT_GT(front, 100u);
+    EXPECT_GT(back, 20u);
 }
 
 TEST(ShadeLanes, TakesSceneWhoseLightsAreAllRectangles) {

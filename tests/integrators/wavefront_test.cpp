@@ -142,12 +142,16 @@ TEST(Wavefront, ManyChunksOnTwoThreadsEqualTheMegakernel) {
 TEST(Wavefront, ShadingFourPathsAtATimeKeepsEverySample) {
     // Lights that are all rectangles: a CPU thread's shade stage takes the diffuse vertices four
     // at a time (shade_lanes.h); the megakernel shades every path alone.
-    const Scene scene = makeRectangleLitScene(20);
-    expectEverySampleOfTheMegakernel(scene);
-    const Accel accel(scene, AccelKind::Embree);
-    const PathSettings settings;
-    EXPECT_TRUE(sameBits(render(scene, accel, settings, false), render(scene, accel, settings, true, 37, 2)))
-        << "chunks of 37 paths on two threads";
+    // Twosided walls too (the lanes resolve them as the scalar path does).
+    for (const bool twoSided : {false, true}) {
+        SCOPED_TRACE(twoSided ? "twosided walls" : "one-sided walls");
+        const Scene scene = makeRectangleLitScene(20, twoSided);
+        expectEverySampleOfTheMegakernel(scene);
+        const Accel accel(scene, AccelKind::Embree);
+        const PathSettings settings;
+        EXPECT_TRUE(sameBits(render(scene, accel, settings, false), render(scene, accel, settings, true, 37, 2)))
+            << "chunks of 37 paths on two threads";
+    }
 }
 
 TEST(Wavefront, ReportsItsMemoryPerPath) {

@@ -47,6 +47,19 @@ std::vector<Case> buildCases(std::vector<Bsdf>& bsdfs) {
     leaf("roughdielectric", test::roughDielectric(1.33f, 0.2f, 0.2f));
     leaf("thindielectric", test::thinDielectric(1.5f));
     cases.push_back({"twosided", test::addTwoSided(bsdfs, test::diffuse(Spectrum(0.7f)), test::plastic())});
+    // Twosided over two leaves is prepared as one leaf (needsTreeWalk); over a composite it walks.
+    cases.push_back({"twosided-diffuse",
+                     test::addTwoSided(bsdfs, test::diffuse(Spectrum(0.7f, 0.2f, 0.4f)), test::diffuse(Spectrum(0.3f)))});
+    cases.push_back({"twosided-conductor", test::addTwoSided(bsdfs, test::roughConductor(0.3f, 0.1f),
+                                                             test::dielectric(1.5f))});
+    {
+        const uint32_t blended = test::blend(bsdfs, 0.4f, test::diffuse(Spectrum(0.5f)), test::roughConductor(0.2f, 0.2f));
+        Bsdf twoSided;
+        twoSided.type = BsdfType::TwoSided;
+        twoSided.front = blended;
+        twoSided.back = blended;
+        cases.push_back({"twosided-blend", append(bsdfs, twoSided)});
+    }
     cases.push_back({"blend", test::blend(bsdfs, 0.3f, test::diffuse(Spectrum(0.4f)), test::dielectric(1.5f))});
     cases.push_back({"mask", test::mask(bsdfs, 0.6f, test::roughConductor(0.2f, 0.2f))});
     return cases;
@@ -90,6 +103,16 @@ TEST(BsdfLeafPath, GivesTheTreeWalksBits) {
                 ASSERT_TRUE(sameBits(direct, walked)) << i;
             }
         }
+    }
+}
+
+TEST(BsdfLeafPath, WalksOnlyWhereItMust) {
+    std::vector<Bsdf> bsdfs;
+    const std::vector<Case> cases = buildCases(bsdfs);
+    const Span<const Bsdf> span(bsdfs.data(), bsdfs.size());
+    for (const Case& c : cases) {
+        const bool walks = c.name == "blend" || c.name == "mask" || c.name == "twosided-blend";
+        EXPECT_EQ(bsdf_detail::needsTreeWalk(span, c.id), walks) << c.name;
     }
 }
 

@@ -532,9 +532,10 @@ struct LeafOps {
 
 }  // namespace bsdf_detail
 
-// The public entry points below walk the BSDF tree (bsdf_composite.h) only for composites; a
-// plain leaf (almost every BSDF of a scene: diffuse, dielectric, conductor, plastic, ... also
-// under a bumpmap or normalmap, which the leaf resolves) goes straight to it. The leaf paths do
+// The public entry points below walk the BSDF tree (bsdf_composite.h) only where they must
+// (needsTreeWalk); a plain leaf (almost every BSDF of a scene: diffuse, dielectric, conductor,
+// plastic, ... also under a bumpmap or normalmap, or a twosided over two such leaves, which the
+// leaf resolves) goes straight to it. The leaf paths do
 // the walk's floating-point operations on its one leaf of weight 1 (a sum that starts at zero,
 // a product by one), so both give the same bits.
 
@@ -542,7 +543,7 @@ struct LeafOps {
 CA_HD_INLINE Spectrum evalBsdf(Span<const Bsdf> bsdfs, uint32_t id, const SurfaceInteraction& si,
                                Vec3f wo, Vec3f wi) {
     const bsdf_detail::LeafOps leaf{bsdfs, si};
-    if (bsdf_detail::isComposite(bsdfs[id].type)) return bsdf_detail::compositeEval(bsdfs, leaf, id, wo, wi);
+    if (bsdf_detail::needsTreeWalk(bsdfs, id)) return bsdf_detail::compositeEval(bsdfs, leaf, id, wo, wi);
     Spectrum sum;
     sum += leaf.eval(id, false, wo, wi) * Float(1);
     return sum;
@@ -552,7 +553,7 @@ CA_HD_INLINE Spectrum evalBsdf(Span<const Bsdf> bsdfs, uint32_t id, const Surfac
 CA_HD_INLINE Float pdfBsdf(Span<const Bsdf> bsdfs, uint32_t id, const SurfaceInteraction& si,
                            Vec3f wo, Vec3f wi) {
     const bsdf_detail::LeafOps leaf{bsdfs, si};
-    if (bsdf_detail::isComposite(bsdfs[id].type)) return bsdf_detail::compositePdf(bsdfs, leaf, id, wo, wi);
+    if (bsdf_detail::needsTreeWalk(bsdfs, id)) return bsdf_detail::compositePdf(bsdfs, leaf, id, wo, wi);
     Float sum = 0;
     sum += leaf.pdf(id, false, wo, wi) * Float(1);
     return sum;
@@ -564,7 +565,7 @@ CA_HD_INLINE Float pdfBsdf(Span<const Bsdf> bsdfs, uint32_t id, const SurfaceInt
 CA_HD_INLINE Spectrum evalPdfBsdf(Span<const Bsdf> bsdfs, uint32_t id, const SurfaceInteraction& si,
                                   Vec3f wo, Vec3f wi, Float& pdf) {
     using namespace bsdf_detail;
-    if (isComposite(bsdfs[id].type)) {
+    if (needsTreeWalk(bsdfs, id)) {
         pdf = pdfBsdf(bsdfs, id, si, wo, wi);
         return evalBsdf(bsdfs, id, si, wo, wi);
     }
@@ -577,21 +578,21 @@ CA_HD_INLINE Spectrum evalPdfBsdf(Span<const Bsdf> bsdfs, uint32_t id, const Sur
 CA_HD_INLINE bool sampleBsdf(Span<const Bsdf> bsdfs, uint32_t id, const SurfaceInteraction& si,
                              Vec3f wo, Float uLobe, Vec2f u, BsdfSample& out) {
     const bsdf_detail::LeafOps leaf{bsdfs, si};
-    if (bsdf_detail::isComposite(bsdfs[id].type))
+    if (bsdf_detail::needsTreeWalk(bsdfs, id))
         return bsdf_detail::compositeSample(bsdfs, leaf, id, wo, uLobe, u, out);
     return bsdf_detail::PreparedLeaf(bsdfs, id, si, wo, false).sampleAlone(uLobe, u, out);
 }
 
 /// BSDF `id` at `si` seen from `wo`, prepared once for the two queries a path vertex makes:
-/// next-event estimation's evalPdf and the sample that continues the path. A plain leaf is
-/// resolved (resolve), textured and given wo in its local frame here, once instead of in each
-/// query; composites walk their tree per query as before. Each query returns evalPdfBsdf's /
+/// next-event estimation's evalPdf and the sample that continues the path. A plain leaf (or a
+/// twosided over two, needsTreeWalk) is resolved (resolve), textured and given wo in its local
+/// frame here, once instead of in each query; other composites walk their tree per query. Each query returns evalPdfBsdf's /
 /// sampleBsdf's values bit for bit (the same operations on the same operands). Not copyable:
 /// the textured BSDF may live in its own scratch.
 class BsdfAtVertex {
 public:
     CA_HD_INLINE BsdfAtVertex(Span<const Bsdf> bsdfs, uint32_t id, const SurfaceInteraction& si, Vec3f wo)
-        : bsdfs_(bsdfs), si_(si), id_(id), wo_(wo), composite_(bsdf_detail::isComposite(bsdfs[id].type)) {
+        : bsdfs_(bsdfs), si_(si), id_(id), wo_(wo), composite_(bsdf_detail::needsTreeWalk(bsdfs, id)) {
         if (!composite_) new (&slot_.leaf) bsdf_detail::PreparedLeaf(bsdfs, id, si, wo, false);
     }
     BsdfAtVertex(const BsdfAtVertex&) = delete;

@@ -38,6 +38,25 @@ CA_HD_INLINE bool isComposite(BsdfType t) {
            t == BsdfType::Null;
 }
 
+/// Whether the entry points of bsdf.h must walk the tree under `id`. Not for a leaf, nor for a
+/// twosided over two leaves (Mitsuba's two-sided walls, the commonest composite): resolve()
+/// (bsdf.h) takes the child on wo's side and negates the normal under the back, as the walk
+/// does, so that child prepared as one leaf gives the walk's bits. A child that is a bumpmap or
+/// normalmap counts as a leaf when what it wraps is a plain leaf (resolve() follows at most
+/// twosided, then one map, then the leaf).
+CA_HD_INLINE bool needsTreeWalk(Span<const Bsdf> bsdfs, uint32_t id) {
+    const Bsdf& b = bsdfs[id];
+    if (b.type != BsdfType::TwoSided) return isComposite(b.type);
+    const auto plainLeaf = [&](uint32_t child) {
+        const Bsdf& c = bsdfs[child];
+        if (isComposite(c.type)) return false;
+        if (c.type != BsdfType::BumpMap && c.type != BsdfType::NormalMap) return true;
+        const BsdfType wrapped = bsdfs[c.front].type;
+        return !isComposite(wrapped) && wrapped != BsdfType::BumpMap && wrapped != BsdfType::NormalMap;
+    };
+    return !plainLeaf(b.front) || !plainLeaf(b.back);
+}
+
 /// Visits the leaves of the tree under `id` with their weights (products of blend weights and
 /// mask opacities) and whether they lie under the back of a twosided: f(id, weight, flip).
 /// Null leaves are skipped (no smooth part). With kBothSides, both children of every twosided

@@ -6,8 +6,9 @@
 // rest one by one through the same shadeVertex; a GPU thread always runs the scalar vertex.
 //
 // What a lane vertex can take today (diffuseQuadEligible): a hit on a triangle of a shape that
-// emits nothing, below the maximum depth, whose BSDF is a plain diffuse one without textures,
-// in a scene whose lights are all rectangles (allLightsAreQuads) — cornell-box's every bounce.
+// emits nothing, below the maximum depth, whose BSDF is a plain diffuse one without textures
+// or a twosided over two such (door-gap's walls), in a scene whose lights are all rectangles
+// (allLightsAreQuads) — cornell-box's every bounce.
 // Other BSDFs, emitters and light types are shaded per path. Host-only (SSE).
 #pragma once
 
@@ -33,8 +34,10 @@ CA_HD_INLINE bool diffuseQuadEligible(const SceneView& scene, const PathState& p
     if (hit.primId >= scene.numTriangles()) return false;
     const Shape& shape = scene.shapes[scene.triangleShape[hit.primId]];
     if (shape.light >= 0 || path.depth + 1 >= maxDepthOf(settings)) return false;
+    const auto plainDiffuse = [](const Bsdf& b) { return b.type == BsdfType::Diffuse && b.numTextures == 0; };
     const Bsdf& b = scene.bsdfs[shape.bsdf];
-    return b.type == BsdfType::Diffuse && b.numTextures == 0;
+    if (b.type == BsdfType::TwoSided) return plainDiffuse(scene.bsdfs[b.front]) && plainDiffuse(scene.bsdfs[b.back]);
+    return plainDiffuse(b);
 }
 
 #if CA_FLOAT4_SSE
@@ -163,11 +166,19 @@ struct LaneVertex4 {
     }
     shade_lanes_detail::DiffuseLanes4 prepareBsdf(const Vec3F4& wo) const {
         shade_lanes_detail::DiffuseLanes4 bsdf;
-        bsdf.n = NS;
         shadingFrameAxes<Float4>(NS, dpdu, bsdf.s, bsdf.t);
-        bsdf.woL = frameToLocal<Float4>(bsdf.s, bsdf.t, bsdf.n, wo);
+        // A twosided's lanes as resolve() (bsdf.h) takes them: where wo is below the shading
+        // normal, the back child with the normal negated (s and t stay those of NS).
+        const uint32_t below = (dot(wo, NS) < 0.0f).bits();
         Spectrum r[4];
-        for (int k = 0; k < 4; ++k) r[k] = scene.bsdfs[scene.shapes[shape[k]].bsdf].reflectance;
+        bool back[4];
+        for (int k = 0; k < 4; ++k) {
+            const Bsdf& b = scene.bsdfs[scene.shapes[shape[k]].bsdf];
+            back[k] = b.type == BsdfType::TwoSided && ((below >> k) & 1u);
+            r[k] = b.type != BsdfType::TwoSided ? b.reflectance : scene.bsdfs[back[k] ? b.back : b.front].reflectance;
+        }
+        bsdf.n = lane::select<Float4>(lane::maskOf(back), -NS, NS);
+        bsdf.woL = frameToLocal<Float4>(bsdf.s, bsdf.t, bsdf.n, wo);
         bsdf.R = shade_lanes_detail::loadSpectrum(r);
         return bsdf;
     }

@@ -54,7 +54,7 @@ ROOT = os.path.normpath(os.path.join(HERE, '..', '..'))
 sys.path.insert(0, os.path.join(ROOT, 'bench'))
 
 LLVM_DEFAULT = '/usr/lib/x86_64-linux-gnu/libLLVM.so.19.1'
-DEFAULT_SCENES = 'cornell-water,glass-caustic,cornell-box,icosphere-330k'
+DEFAULT_SCENES = 'cornell-water,glass-caustic,cornell-box,door-gap,icosphere-330k'
 NEEDED_DEFAULTS = ('spp', 'width', 'height', 'max_depth')
 COLUMNS = ['scene', 'triangles', 'res', 'spp', 'max_depth', 'threads', 'renderer', 'rounds', 'seconds',
            'samples_per_s', 'rays_per_s', 'ratio_caustica_over_this', 'ratio_min', 'ratio_max', 'image_mean', 'note']

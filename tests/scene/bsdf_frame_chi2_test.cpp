@@ -145,6 +145,44 @@ TEST_P(FrameChi2, SamplingMatchesPdf) { runFrameChi2(GetParam(), 11); }
 INSTANTIATE_TEST_SUITE_P(All, FrameChi2, testing::ValuesIn(makeCases()),
                          [](const testing::TestParamInfo<FrameCase>& info) { return info.param.name; });
 
+/// A twosided over a bumpmap or normalmap is prepared as one leaf (needsTreeWalk, bsdf.h): it must
+/// give the tree walk's bits, from either side, textured frames included.
+TEST(FrameChi2, TwoSidedOverAMapGivesTheWalksBits) {
+    const FrameTextures tex;
+    const SurfaceInteraction si = tiltedSurface(tex);
+    int cases = 0;
+    for (const FrameCase& c : makeCases()) {
+        const Span<const Bsdf> bsdfs(c.bsdfs);
+        if (bsdfs[c.id].type != BsdfType::TwoSided) continue;
+        SCOPED_TRACE(c.name);
+        ++cases;
+        EXPECT_FALSE(bsdf_detail::needsTreeWalk(bsdfs, c.id));
+        const bsdf_detail::LeafOps leaf{bsdfs, si};
+        IndependentSampler rng(5, 0, 9);
+        for (int i = 0; i < 2000; ++i) {
+            const Float z = 1 - 2 * rng.get1D(), phi = 2 * kPi * rng.get1D();
+            const Vec3f wo(std::sqrt(max(Float(0), 1 - z * z)) * std::cos(phi),
+                           std::sqrt(max(Float(0), 1 - z * z)) * std::sin(phi), z);
+            const Vec3f wi = normalize(Vec3f(rng.get1D() - 0.5f, rng.get1D() - 0.5f, rng.get1D() - 0.5f));
+            const Spectrum f = evalBsdf(bsdfs, c.id, si, wo, wi), fw = bsdf_detail::compositeEval(bsdfs, leaf, c.id, wo, wi);
+            ASSERT_TRUE(f.r == fw.r && f.g == fw.g && f.b == fw.b) << i;
+            ASSERT_EQ(pdfBsdf(bsdfs, c.id, si, wo, wi), bsdf_detail::compositePdf(bsdfs, leaf, c.id, wo, wi)) << i;
+            const Float uLobe = rng.get1D();
+            const Vec2f u = rng.get2D();
+            BsdfSample direct, walked;
+            const bool a = sampleBsdf(bsdfs, c.id, si, wo, uLobe, u, direct);
+            ASSERT_EQ(a, bsdf_detail::compositeSample(bsdfs, leaf, c.id, wo, uLobe, u, walked)) << i;
+            if (a) {
+                ASSERT_TRUE(direct.wi.x == walked.wi.x && direct.wi.y == walked.wi.y && direct.wi.z == walked.wi.z &&
+                            direct.pdf == walked.pdf && direct.weight.r == walked.weight.r &&
+                            direct.weight.g == walked.weight.g && direct.weight.b == walked.weight.b)
+                    << i;
+            }
+        }
+    }
+    EXPECT_EQ(cases, 1);  // twosided_bumpmap_back (normalmap_twosided_back has the map on top)
+}
+
 /// The narrow roughness (alpha_u) lies along dp/du: reflected directions spread along the
 /// frame's t axis, not along s; turning dp/du by 90° turns the lobe.
 TEST(FrameChi2, AnisotropicLobeFollowsDpdu) {

@@ -535,9 +535,9 @@ struct LeafOps {
 // The public entry points below walk the BSDF tree (bsdf_composite.h) only where they must
 // (needsTreeWalk); a plain leaf (almost every BSDF of a scene: diffuse, dielectric, conductor,
 // plastic, ... also under a bumpmap or normalmap, or a twosided over two such leaves, which the
-// leaf resolves) goes straight to it. The leaf paths do
-// the walk's floating-point operations on its one leaf of weight 1 (a sum that starts at zero,
-// a product by one), so both give the same bits.
+// leaf resolves) goes straight to it. The leaf paths do the walk's floating-point operations on
+// its one leaf of weight 1 (a sum that starts at zero, a product by one), so both give the same
+// bits.
 
 /// f(wo, wi) · |cosθi| of the non-delta part of BSDF `id` at `si` (world-space unit directions).
 CA_HD_INLINE Spectrum evalBsdf(Span<const Bsdf> bsdfs, uint32_t id, const SurfaceInteraction& si,
@@ -586,9 +586,9 @@ CA_HD_INLINE bool sampleBsdf(Span<const Bsdf> bsdfs, uint32_t id, const SurfaceI
 /// BSDF `id` at `si` seen from `wo`, prepared once for the two queries a path vertex makes:
 /// next-event estimation's evalPdf and the sample that continues the path. A plain leaf (or a
 /// twosided over two, needsTreeWalk) is resolved (resolve), textured and given wo in its local
-/// frame here, once instead of in each query; other composites walk their tree per query. Each query returns evalPdfBsdf's /
-/// sampleBsdf's values bit for bit (the same operations on the same operands). Not copyable:
-/// the textured BSDF may live in its own scratch.
+/// frame here, once instead of in each query; other composites walk their tree per query. Each
+/// query returns evalPdfBsdf's / sampleBsdf's values bit for bit (the same operations on the same
+/// operands). Not copyable: the textured BSDF may live in its own scratch.
 class BsdfAtVertex {
 public:
     CA_HD_INLINE BsdfAtVertex(Span<const Bsdf> bsdfs, uint32_t id, const SurfaceInteraction& si, Vec3f wo)

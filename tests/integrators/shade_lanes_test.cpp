@@ -169,9 +169,10 @@ TEST(ShadeLanes, TakesTwoSidedDiffuseVerticesBothWays) {
     accel.visit([&](const auto& it) {
         const size_t pixels = size_t(scene.film.width) * size_t(scene.film.height);
         for (size_t p = 0; p < pixels; ++p) {
+            const CameraSample c = cameraSample(scene.camera, p, scene.film.width, 3, 41);
             PathState path;
-            IndependentSampler sampler = cameraSample(scene.camera, p, scene.film.width, 3, 41).sampler;
-            if (!startPath(path, cameraSample(scene.camera, p, scene.film.width, 3, 41).ray, settings)) continue;
+            IndependentSampler sampler = c.sampler;
+            if (!startPath(path, c.ray, settings)) continue;
             for (int bounce = 0; bounce < 6; ++bounce) {
                 Hit hit;
                 if (!it.intersect(path.ray, hit)) break;

@@ -9,6 +9,7 @@
 
 #include "caustica/scene/bsdf.h"
 #include "caustica/util/rng.h"
+#include "caustica/util/sampling.h"
 #include "scene/bsdf_test_util.h"
 #include "scene/chi2.h"
 
@@ -160,10 +161,7 @@ TEST(FrameChi2, TwoSidedOverAMapGivesTheWalksBits) {
         const bsdf_detail::LeafOps leaf{bsdfs, si};
         IndependentSampler rng(5, 0, 9);
         for (int i = 0; i < 2000; ++i) {
-            const Float z = 1 - 2 * rng.get1D(), phi = 2 * kPi * rng.get1D();
-            const Vec3f wo(std::sqrt(max(Float(0), 1 - z * z)) * std::cos(phi),
-                           std::sqrt(max(Float(0), 1 - z * z)) * std::sin(phi), z);
-            const Vec3f wi = normalize(Vec3f(rng.get1D() - 0.5f, rng.get1D() - 0.5f, rng.get1D() - 0.5f));
+            const Vec3f wo = sampleUniformSphere(rng.get2D()), wi = sampleUniformSphere(rng.get2D());
             const Spectrum f = evalBsdf(bsdfs, c.id, si, wo, wi), fw = bsdf_detail::compositeEval(bsdfs, leaf, c.id, wo, wi);
             ASSERT_TRUE(f.r == fw.r && f.g == fw.g && f.b == fw.b) << i;
             ASSERT_EQ(pdfBsdf(bsdfs, c.id, si, wo, wi), bsdf_detail::compositePdf(bsdfs, leaf, c.id, wo, wi)) << i;

@@ -292,9 +292,9 @@ void writeBucketKeys(Exec exec, size_t n, MultiHashView view, const uint32_t* or
 
 /// A multi-level hash table over a PointSet (see point_set.h for the interface). Build: the
 /// points' cube, Morton codes and one radix sort of them; the tree over the sorted codes on the
-/// host (MultiHashTopology: about 2n / leafPoints nodes); kernels per chunk of points and per leaf
-/// choosing each leaf's level (measureLeaves); a radix sort of the points by bucket. Memory: 4 bytes per point, 4 per bucket (2 x the
-/// occupied cells, rounded up to powers of two per leaf), 36 per node and 44 per leaf.
+/// host (MultiHashTopology: about 2n / leafPoints nodes); each leaf's level (measureLeaves); a
+/// radix sort of the points by bucket. Memory: 4 bytes per point, 4 per bucket (2 x the occupied
+/// cells, rounded up to powers of two per leaf), 36 per node and 44 per leaf.
 class MultiHash {
 public:
     template <class Exec>

@@ -64,8 +64,9 @@ std::function<int()> addInfoCommand(CLI::App& app) {
         printScene(scene);
         Bvh bvh = buildBvh(scene);
         const BvhStats& st = bvh.stats;
-        std::printf("bvh          %u nodes, %u leaves, max depth %u, %.2f primitives/leaf\n", st.nodeCount,
-                    st.leafCount, st.maxDepth, st.averageLeafSize);
+        std::printf("bvh          %u nodes, %u leaves, max depth %u, %.2f primitives/leaf; %u rectangles "
+                    "tested as planes\n",
+                    st.nodeCount, st.leafCount, st.maxDepth, st.averageLeafSize, st.directParallelograms);
         std::printf("bvh cost     SAH %.3f, %.2f MiB, built in %.1f ms\n", st.sahCost,
                     double(st.memoryBytes) / (1024.0 * 1024.0), st.buildMilliseconds);
         return 0;

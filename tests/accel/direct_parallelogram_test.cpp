@@ -1,7 +1,8 @@
 // Parallelogram meshes tested as planes (scene/parallelogram.h, accel/parallelogram_intersect.h)
-// and Embree's intersector that tests them itself (EmbreeSceneOptions::directParallelograms):
-// detection, the lane form against the float form bit for bit, the plane test against the two
-// triangles' watertight test, and Embree's answers with and without the direct test.
+// by Embree's intersector (EmbreeSceneOptions::directParallelograms) and by the own BVH
+// (BvhBuildOptions::directParallelograms): detection, the lane form against the float form bit
+// for bit, the plane test against the two triangles' watertight test, and both ray tracers'
+// answers with and without the direct test.
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -10,6 +11,8 @@
 #include <gtest/gtest.h>
 
 #include "accel/test_scenes.h"
+#include "caustica/accel/bvh.h"
+#include "caustica/accel/bvh_traversal.h"
 #include "caustica/accel/embree_accel.h"
 #include "caustica/accel/parallelogram_intersect.h"
 
@@ -183,6 +186,22 @@ TEST(IntersectParallelogram, AgreesWithItsTwoTrianglesWatertightTest) {
     EXPECT_LT(nearEdges, total / 10);
 }
 
+/// Hits of one ray on the same primitive from a plane test (a) and a triangle test (b): t and
+/// barycentrics within the rounding both tests allow, magnified by 1 / cos θ for a grazing ray
+/// (see AgreesWithItsTwoTrianglesWatertightTest).
+void expectCloseHits(const Scene& scene, const Ray& ray, const Hit& ha, const Hit& hb) {
+    Float grazing = 0;
+    if (ha.primId < scene.triangles.size()) {
+        const Vec3u tri = scene.triangles[ha.primId];
+        const Vec3f p0 = scene.positions[tri.x];
+        const Vec3f n = normalize(cross(scene.positions[tri.y] - p0, scene.positions[tri.z] - p0));
+        grazing = 1 / std::fabs(dot(normalize(ray.d), n));
+    }
+    EXPECT_NEAR(ha.t, hb.t, 1e-6f * hb.t * (1 + grazing));
+    EXPECT_NEAR(ha.b1, hb.b1, 1e-5f * (1 + grazing));
+    EXPECT_NEAR(ha.b2, hb.b2, 1e-5f * (1 + grazing));
+}
+
 /// Triangles, parallelograms, and `spheres` spheres (one: the packets' sphere lanes; more: the
 /// per-ray direct tests, under directPrimitives = their count).
 Scene mixedScene(uint64_t seed, uint32_t spheres, int parallelograms) {
@@ -242,20 +261,106 @@ TEST(EmbreeDirectParallelograms, AnswerAsTheirTrianglesInEmbree) {
             }
             if (!fa) continue;
             ++hits;
-            Float grazing = 0;  // 1 / cos θ on a triangle (see AgreesWithItsTwoTrianglesWatertightTest)
-            if (ha.primId < scene.triangles.size()) {
-                const Vec3u tri = scene.triangles[ha.primId];
-                const Vec3f p0 = scene.positions[tri.x];
-                const Vec3f n = normalize(cross(scene.positions[tri.y] - p0, scene.positions[tri.z] - p0));
-                grazing = 1 / std::fabs(dot(normalize(ray.d), n));
-            }
-            EXPECT_NEAR(ha.t, hb.t, 1e-6f * hb.t * (1 + grazing));
-            EXPECT_NEAR(ha.b1, hb.b1, 1e-5f * (1 + grazing));
-            EXPECT_NEAR(ha.b2, hb.b2, 1e-5f * (1 + grazing));
+            expectCloseHits(scene, ray, ha, hb);
         }
         EXPECT_GT(hits, rays.size() / 4);
         EXPECT_LT(differ, rays.size() / 200);
     }
+}
+
+TEST(BvhDirectParallelograms, TakesUpToTheLimitAndLeavesTheirTrianglesOut) {
+    const Scene scene = mixedScene(6, 1, 5);
+    const Bvh bvh = buildBvh(scene);
+    ASSERT_EQ(bvh.quads.size(), 5u);
+    EXPECT_EQ(bvh.stats.directParallelograms, 5u);
+    EXPECT_EQ(bvh.primIndices.size(), size_t(scene.numPrimitives()) - 10);
+    for (const ParallelogramPlane& q : bvh.quads)
+        for (uint32_t id : bvh.primIndices) ASSERT_TRUE(id != q.mesh.first && id != q.mesh.second);
+    BvhBuildOptions few;
+    few.directParallelograms = 4;  // more than the limit: all stay in the tree
+    const Bvh all = buildBvh(scene, few);
+    EXPECT_TRUE(all.quads.empty());
+    EXPECT_EQ(all.primIndices.size(), size_t(scene.numPrimitives()));
+}
+
+TEST(BvhDirectParallelograms, ASceneOfParallelogramsAloneNeedsNoTree) {
+    Scene scene;
+    test::addParallelogram(scene, Vec3f(-1, -1, 0), Vec3f(2, 0, 0), Vec3f(0, 2, 0));
+    test::addParallelogram(scene, Vec3f(-1, -1, 2), Vec3f(2, 0, 0), Vec3f(0, 2, 0));
+    const Bvh bvh = buildBvh(scene);
+    EXPECT_TRUE(bvh.nodes.empty());
+    ASSERT_EQ(bvh.quads.size(), 2u);
+    Hit hit;
+    ASSERT_TRUE(bvhIntersect(bvh.view(), scene.view(), Ray{Vec3f(0.3f, 0.2f, 5), Vec3f(0, 0, -1), kInfinity}, hit));
+    EXPECT_FLOAT_EQ(hit.t, 3);
+    EXPECT_TRUE(hit.primId == 2 || hit.primId == 3);  // the nearer one, at z = 2
+    EXPECT_TRUE(bvhOccluded(bvh.view(), scene.view(), Ray{Vec3f(0.3f, 0.2f, 5), Vec3f(0, 0, -1), 3.5f}));
+    EXPECT_FALSE(bvhOccluded(bvh.view(), scene.view(), Ray{Vec3f(0.3f, 0.2f, 5), Vec3f(0, 0, -1), 2.5f}));
+    EXPECT_FALSE(bvhIntersect(bvh.view(), scene.view(), Ray{Vec3f(3, 0, 5), Vec3f(0, 0, -1), kInfinity}, hit));
+}
+
+/// One traversal of the own BVH with the parallelograms tested as planes against the same tree
+/// with all of them as triangles: the same hits (primitive, t, barycentrics, occlusion) except
+/// for rays at an edge; and where the nearest hit is a parallelogram, Embree's intersector (which
+/// tests them the same way) gives the same bits.
+template <BvhTraversal Traversal>
+void checkBvhAgainstItsTriangles() {
+    for (uint32_t spheres : {0u, 1u, 3u}) {
+        SCOPED_TRACE(std::to_string(spheres) + " spheres");
+        const Scene scene = mixedScene(8 + spheres, spheres, 12);
+        BvhBuildOptions direct, triangles;
+        direct.directParallelograms = 12;
+        triangles.directParallelograms = 0;
+        const Bvh a = buildBvh(scene, direct), b = buildBvh(scene, triangles);
+        ASSERT_EQ(a.quads.size(), 12u);
+        ASSERT_TRUE(b.quads.empty());
+        EmbreeSceneOptions embreeOptions;
+        embreeOptions.directPrimitives = spheres;
+        const EmbreeScene embree(scene, embreeOptions);
+        const EmbreeIntersector ie = embree.intersector();
+        const std::vector<Ray> rays = test::makeRandomRays(scene, 4000, 9 + spheres);
+        size_t hits = 0, quadHits = 0, differ = 0;
+        for (const Ray& ray : rays) {
+            Hit ha, hb;
+            const bool fa = bvhIntersect<Traversal>(a.view(), scene.view(), ray, ha);
+            const bool fb = bvhIntersect<Traversal>(b.view(), scene.view(), ray, hb);
+            const bool oa = bvhOccluded<Traversal>(a.view(), scene.view(), ray);
+            const bool sameHit = fa == fb && (!fa || ha.primId == hb.primId);
+            if (!sameHit || oa != bvhOccluded<Traversal>(b.view(), scene.view(), ray)) {
+                const bool edge = (fa && ha.primId < scene.triangles.size() && nearAnEdge(ha.b1, ha.b2, 1e-4f)) ||
+                                  (fb && hb.primId < scene.triangles.size() && nearAnEdge(hb.b1, hb.b2, 1e-4f));
+                EXPECT_TRUE(edge) << "different answers away from any edge";
+                ++differ;
+                continue;
+            }
+            EXPECT_EQ(oa, fa);  // something blocks the ray exactly when it has a closest hit
+            if (!fa) continue;
+            ++hits;
+            bool onQuad = false;
+            for (const ParallelogramPlane& q : a.quads) onQuad = onQuad || ha.primId == q.mesh.first || ha.primId == q.mesh.second;
+            if (onQuad) {
+                ++quadHits;
+                Hit he;
+                ASSERT_TRUE(ie.intersect(ray, he));
+                EXPECT_EQ(he.primId, ha.primId);
+                EXPECT_EQ(bitsOf(he.t), bitsOf(ha.t));
+                EXPECT_EQ(bitsOf(he.b1), bitsOf(ha.b1));
+                EXPECT_EQ(bitsOf(he.b2), bitsOf(ha.b2));
+            }
+            expectCloseHits(scene, ray, ha, hb);
+        }
+        EXPECT_GT(hits, rays.size() / 4);
+        EXPECT_GT(quadHits, rays.size() / 40);
+        EXPECT_LT(differ, rays.size() / 200);
+    }
+}
+
+TEST(BvhDirectParallelograms, AnswerAsTheirTrianglesInTheTree) { checkBvhAgainstItsTriangles<BvhTraversal::Stack>(); }
+TEST(BvhDirectParallelograms, AnswerAsTheirTrianglesShortStack) {
+    checkBvhAgainstItsTriangles<BvhTraversal::ShortStack>();
+}
+TEST(BvhDirectParallelograms, AnswerAsTheirTrianglesStackless) {
+    checkBvhAgainstItsTriangles<BvhTraversal::Stackless>();
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <new>
 #include <vector>
 
+#include "caustica/accel/parallelogram_intersect.h"
 #include "caustica/scene/scene.h"
 #include "caustica/util/math.h"
 #include "caustica/util/span.h"
@@ -80,6 +81,9 @@ struct BvhView {
     /// for the root. Only the stackless and short-stack traversals read them; without them these
     /// find a node's parent by descending from the root (correct, but one node fetch per level).
     Span<const uint32_t> parents = {};
+    /// Parallelogram meshes (rectangles) tested as planes before each traversal, their triangles
+    /// left out of the tree (BvhBuildOptions::directParallelograms).
+    Span<const ParallelogramPlane> quads = {};
 };
 
 /// Builder settings. Costs are the SAH constants of MacDonald and Booth, "Heuristics for Ray
@@ -97,6 +101,14 @@ struct BvhBuildOptions {
     bool precomputePrimitives = true;  // fill Bvh::prims (see BvhPrimitive)
     bool parentLinks = true;           // fill Bvh::parents (4 bytes per node; for the stackless
                                        // and short-stack traversals, see BvhTraversal)
+    /// Parallelogram meshes (every rectangle shape, scene/parallelogram.h) tested as one plane each
+    /// before the traversal instead of as two triangles in the tree, when the scene has at most
+    /// this many (directParallelograms); 0: all stay triangles. The same test as Embree's
+    /// intersector (EmbreeSceneOptions::directParallelograms): a box's walls are a few large
+    /// triangles whose boxes overlap everything inside it. Fewer than Embree's 16: a ray here tests
+    /// them one at a time (Embree's packets four rays at a time), and door-gap's 12 planes cost
+    /// the CPU 8% more than its 24-triangle tree (docs/PERFORMANCE.md, 2026-12-01).
+    uint32_t directParallelograms = 8;
 };
 
 /// Figures for `caustica info` and the tests.
@@ -105,11 +117,12 @@ struct BvhStats {
     uint32_t leafCount = 0;
     uint32_t maxDepth = 0;       // nodes on the longest root-to-leaf path
     uint32_t width = 0;          // children per node used (see BvhBuildOptions::width)
+    uint32_t directParallelograms = 0;  // parallelograms tested as planes, outside the tree
     uint32_t maxStack = 0;       // bound on the traversal stack entries this tree can need
     double averageLeafSize = 0;  // primitives per leaf
     double sahCost = 0;          // expected cost of a random ray hitting the root box: node
                                  // visits * traversalCost + primitive tests * intersectionCost
-    size_t memoryBytes = 0;      // nodes + primIndices + prims + parents
+    size_t memoryBytes = 0;      // nodes + primIndices + prims + parents + quads
     double buildMilliseconds = 0;
 };
 
@@ -141,17 +154,19 @@ struct Bvh {
     std::vector<uint32_t> primIndices;
     std::vector<BvhPrimitive> prims;
     std::vector<uint32_t> parents;  // see BvhView::parents; empty without options.parentLinks
+    std::vector<ParallelogramPlane> quads;  // see BvhView::quads
     BvhStats stats;
 
     BvhView view() const {
         return BvhView{Span<const BvhNode>(nodes.data(), nodes.size()), primIndices, prims,
-                       parents};
+                       parents, quads};
     }
 };
 
-/// Builds a binned-SAH BVH over all primitives of `scene` (Wald, "On fast Construction of SAH-based
-/// Bounding Volume Hierarchies", IEEE RT 2007). Subtrees are built in parallel with TBB; the result
-/// is identical for any thread count. An empty scene gives an empty BVH (no nodes).
+/// Builds a binned-SAH BVH over the primitives of `scene` (Wald, "On fast Construction of SAH-based
+/// Bounding Volume Hierarchies", IEEE RT 2007), all but the triangles of the parallelograms it
+/// tests as planes (Bvh::quads). Subtrees are built in parallel with TBB; the result is identical
+/// for any thread count. A scene without other primitives gives a tree without nodes.
 Bvh buildBvh(const Scene& scene, const BvhBuildOptions& options = {});
 
 }  // namespace caustica

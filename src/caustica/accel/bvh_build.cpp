@@ -245,13 +245,27 @@ private:
 Bvh buildBvh(const Scene& scene, const BvhBuildOptions& options) {
     const auto start = std::chrono::steady_clock::now();
     Bvh bvh;
-    const uint32_t numPrims = scene.numPrimitives();
+    // The parallelograms tested as planes, and the primitives left for the tree.
+    std::vector<uint32_t> treePrims;
+    {
+        const std::vector<PreparedParallelogram> quads = directParallelograms(scene, options.directParallelograms);
+        std::vector<bool> direct(scene.triangles.size(), false);
+        for (const PreparedParallelogram& q : quads) {
+            bvh.quads.push_back(q);  // the plain plane, without the host's four-lane splat
+            direct[q.mesh.first] = direct[q.mesh.second] = true;
+        }
+        treePrims.reserve(scene.numPrimitives());
+        for (uint32_t id = 0; id < scene.numPrimitives(); ++id)
+            if (id >= direct.size() || !direct[id]) treePrims.push_back(id);
+    }
+    const uint32_t numPrims = uint32_t(treePrims.size());
     if (numPrims > 0) {
         std::vector<PrimRef> refs(numPrims);
-        tbb::parallel_for(uint32_t(0), numPrims, [&](uint32_t id) {
-            refs[id].bounds = scene.primitiveBounds(id);
-            refs[id].centroid = refs[id].bounds.center();
-            refs[id].id = id;
+        tbb::parallel_for(uint32_t(0), numPrims, [&](uint32_t i) {
+            const uint32_t id = treePrims[i];
+            refs[i].bounds = scene.primitiveBounds(id);
+            refs[i].centroid = refs[i].bounds.center();
+            refs[i].id = id;
         });
         std::unique_ptr<BuildNode> root = Builder(options, refs).build(0, numPrims, 0);
 
@@ -311,9 +325,11 @@ Bvh buildBvh(const Scene& scene, const BvhBuildOptions& options) {
         }
     }
     BvhStats& s = bvh.stats;
+    s.directParallelograms = uint32_t(bvh.quads.size());
     s.averageLeafSize = s.leafCount ? double(numPrims) / s.leafCount : 0.0;
     s.memoryBytes = bvh.nodes.size() * sizeof(BvhNode) + bvh.primIndices.size() * sizeof(uint32_t) +
-                    bvh.prims.size() * sizeof(BvhPrimitive) + bvh.parents.size() * sizeof(uint32_t);
+                    bvh.prims.size() * sizeof(BvhPrimitive) + bvh.parents.size() * sizeof(uint32_t) +
+                    bvh.quads.size() * sizeof(ParallelogramPlane);
     s.buildMilliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return bvh;

@@ -437,14 +437,24 @@ CA_HD_INLINE bool traverseWith(const BvhView& bvh, const SceneView& scene, const
 }  // namespace bvh_detail
 
 /// Closest hit of `ray` with t in (0, ray.tMax). On a hit, fills `hit` (t, primId, b1, b2) and
-/// returns true; otherwise leaves `hit` unchanged.
+/// returns true; otherwise leaves `hit` unchanged. The parallelograms outside the tree
+/// (BvhView::quads) are tested first, as Embree's intersector does: the nearest one's t becomes
+/// the traversal's limit, so the tree yields a primitive only if it is nearer.
 template <BvhTraversal Traversal = BvhTraversal::Stack, int ShortStackSize = kBvhShortStackSize>
 CA_HD_INLINE bool bvhIntersect(const BvhView& bvh, const SceneView& scene, const Ray& ray,
                                Hit& hit) {
     Hit best;
     best.t = ray.tMax;
-    if (!bvh_detail::traverseWith<Traversal, ShortStackSize, false>(bvh, scene, ray, best))
-        return false;
+    bool found = false;
+    for (size_t i = 0; i < bvh.quads.size(); ++i) {
+        Float t, u, v;
+        if (intersectParallelogram<Float>(ray.o, ray.d, best.t, bvh.quads[i], t, u, v)) {
+            best = parallelogramHit(bvh.quads[i], t, u, v);
+            found = true;
+        }
+    }
+    if (bvh_detail::traverseWith<Traversal, ShortStackSize, false>(bvh, scene, ray, best)) found = true;
+    if (!found) return false;
     hit = best;
     return true;
 }
@@ -452,6 +462,10 @@ CA_HD_INLINE bool bvhIntersect(const BvhView& bvh, const SceneView& scene, const
 /// True if anything is hit with t in (0, ray.tMax) (shadow rays).
 template <BvhTraversal Traversal = BvhTraversal::Stack, int ShortStackSize = kBvhShortStackSize>
 CA_HD_INLINE bool bvhOccluded(const BvhView& bvh, const SceneView& scene, const Ray& ray) {
+    for (size_t i = 0; i < bvh.quads.size(); ++i) {
+        Float t, u, v;
+        if (intersectParallelogram<Float>(ray.o, ray.d, ray.tMax, bvh.quads[i], t, u, v)) return true;
+    }
     Hit best;
     best.t = ray.tMax;
     return bvh_detail::traverseWith<Traversal, ShortStackSize, true>(bvh, scene, ray, best);

@@ -56,6 +56,7 @@ void DeviceScene::upload(const Scene& scene, const Bvh& bvh) {
     bvhView_.primIndices = uploadArray(d, primIndices_, bvh.primIndices, bytes_);
     bvhView_.prims = uploadArray(d, prims_, bvh.prims, bytes_);
     bvhView_.parents = uploadArray(d, parents_, bvh.parents, bytes_);  // for the short-stack and stackless traversals
+    bvhView_.quads = uploadArray(d, quads_, bvh.quads, bytes_);        // rectangles tested as planes
 }
 
 }  // namespace caustica

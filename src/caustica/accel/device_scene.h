@@ -70,6 +70,7 @@ private:
     Buffer<uint32_t> primIndices_;
     Buffer<BvhPrimitive> prims_;
     Buffer<uint32_t> parents_;
+    Buffer<ParallelogramPlane> quads_;
     SceneView view_;
     BvhView bvhView_;
     size_t bytes_ = 0;

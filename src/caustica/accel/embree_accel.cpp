@@ -155,14 +155,6 @@ Hit toHit(const EmbreeIntersector& it, float tfar, unsigned geomID, unsigned pri
 
 // ---- spheres and cylinders tested directly (EmbreeSceneOptions::directPrimitives) ----
 
-/// The hit of a ray on direct parallelogram `q` at t and edge coordinates (u, v).
-Hit parallelogramHit(const PreparedParallelogram& q, Float t, Float u, Float v) {
-    Hit hit;
-    hit.t = t;
-    parallelogramHitTriangle(q.mesh, u, v, hit.primId, hit.b1, hit.b2);
-    return hit;
-}
-
 /// The closest of the intersector's direct parallelograms (when `quads`), spheres and cylinders
 /// hit with t in (0, tMax), written to `hit`; false (hit unchanged) if none is. Tested before
 /// Embree's query, whose tfar then becomes that t, so Embree culls what lies beyond and keeps a
@@ -458,13 +450,8 @@ bool sharesVertexArray(const std::vector<Vec3f>& positions) {
 }
 
 void EmbreeScene::takeDirectParallelograms(const Scene& scene, uint32_t limit) {
-    std::vector<PreparedParallelogram> quads;
-    for (const Shape& shape : scene.shapes) {
-        MeshParallelogram m;
-        if (meshParallelogram(scene, shape, m)) quads.push_back(prepareParallelogram(m));
-    }
-    if (quads.empty() || quads.size() > limit) return;
-    directQuads_ = std::move(quads);
+    directQuads_ = directParallelograms(scene, limit);
+    if (directQuads_.empty()) return;
     std::vector<bool> direct(scene.triangles.size(), false);
     for (const PreparedParallelogram& q : directQuads_) direct[q.mesh.first] = direct[q.mesh.second] = true;
     runFirst_.clear();

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "caustica/scene/parallelogram.h"
 #include "caustica/scene/ray.h"
@@ -24,11 +25,17 @@ struct ParallelogramLanes {
 /// A parallelogram prepared for ray tests: `normal` = cross(edgeU, edgeV) (not unit), and the
 /// dual vectors dualU = cross(edgeV, normal) / |normal|², dualV = cross(normal, edgeU) / |normal|²
 /// that give a point's edge coordinates: u = dot(p - corner, dualU), v = dot(p - corner, dualV).
-/// `lanes4` holds the same four vectors splat across four lanes: a packet's rays all meet the
-/// same few parallelograms, so the splat is made once, not at every four-ray test.
-struct PreparedParallelogram {
+/// Plain floats, the same layout on the host and a GPU: the own BVH's kernels read these
+/// (BvhView::quads) one ray at a time.
+struct ParallelogramPlane {
     Vec3f corner, normal, dualU, dualV;
     MeshParallelogram mesh;
+};
+
+/// The host's form for packets (Embree's intersector): `lanes4` holds the same four vectors
+/// splat across four lanes: a packet's rays all meet the same few parallelograms, so the splat is
+/// made once, not at every four-ray test.
+struct PreparedParallelogram : ParallelogramPlane {
     ParallelogramLanes<Float4> lanes4;
 };
 
@@ -52,9 +59,24 @@ inline PreparedParallelogram prepareParallelogram(const MeshParallelogram& m) {
     return p;
 }
 
-/// The prepared parallelogram's vectors as F's lanes: for four lanes the stored splat.
-template <class F>
-CA_HD_FORCE_INLINE decltype(auto) lanesOf(const PreparedParallelogram& q) {
+/// The parallelogram meshes of `scene` (meshParallelogram: every rectangle shape), prepared, in
+/// shape order; none when there are more than `limit` (each ray tests all of them, so a scene of
+/// many is better left to the BVH as triangles). Embree's intersector and the own BVH take the
+/// same ones.
+inline std::vector<PreparedParallelogram> directParallelograms(const Scene& scene, uint32_t limit) {
+    std::vector<PreparedParallelogram> quads;
+    for (const Shape& shape : scene.shapes) {
+        MeshParallelogram m;
+        if (meshParallelogram(scene, shape, m)) quads.push_back(prepareParallelogram(m));
+        if (quads.size() > limit) return {};
+    }
+    return quads;
+}
+
+/// The prepared parallelogram's vectors as F's lanes: for one lane its plain vectors, for four
+/// lanes the stored splat (a PreparedParallelogram's).
+template <class F, class Q>
+CA_HD_FORCE_INLINE decltype(auto) lanesOf(const Q& q) {
     if constexpr (LaneTraits<F>::width == 1)
         return ParallelogramLanes<F>{q.corner, q.normal, q.dualU, q.dualV};
     else
@@ -62,10 +84,11 @@ CA_HD_FORCE_INLINE decltype(auto) lanesOf(const PreparedParallelogram& q) {
 }
 
 /// For each lane: whether the ray o + t·d hits the parallelogram with t in (0, tMax), both sides,
-/// edges included (u, v in [0, 1]); where it does, t, u and v. A ray in the plane misses.
-template <class F>
-CA_HD_FORCE_INLINE MaskOf<F> intersectParallelogram(const Vec3Of<F>& o, const Vec3Of<F>& d, F tMax,
-                                                    const PreparedParallelogram& q, F& t, F& u, F& v) {
+/// edges included (u, v in [0, 1]); where it does, t, u and v. A ray in the plane misses. Q is a
+/// ParallelogramPlane for one lane, a PreparedParallelogram for any width.
+template <class F, class Q>
+CA_HD_FORCE_INLINE MaskOf<F> intersectParallelogram(const Vec3Of<F>& o, const Vec3Of<F>& d, F tMax, const Q& q,
+                                                    F& t, F& u, F& v) {
     const ParallelogramLanes<F>& l = lanesOf<F>(q);
     const Vec3Of<F> toCorner = l.corner - o;
     t = dot(toCorner, l.normal) / dot(d, l.normal);  // ±inf or NaN in the plane's direction: rejected below
@@ -78,8 +101,8 @@ CA_HD_FORCE_INLINE MaskOf<F> intersectParallelogram(const Vec3Of<F>& o, const Ve
 
 /// The triangle of a parallelogram hit at edge coordinates (u, v) and its barycentrics (b1, b2)
 /// as a triangle test reports them (the weights of the triangle's vertices 1 and 2).
-inline void parallelogramHitTriangle(const MeshParallelogram& m, Float u, Float v, uint32_t& triangle, Float& b1,
-                                     Float& b2) {
+CA_HD_INLINE void parallelogramHitTriangle(const MeshParallelogram& m, Float u, Float v, uint32_t& triangle,
+                                           Float& b1, Float& b2) {
     Float w[3];
     const bool firstHalf = u + v <= 1;
     const uint8_t* slot = m.slots[firstHalf ? 0 : 1];
@@ -91,6 +114,15 @@ inline void parallelogramHitTriangle(const MeshParallelogram& m, Float u, Float 
     triangle = firstHalf ? m.first : m.second;
     b1 = w[1];
     b2 = w[2];
+}
+
+/// The hit of a ray on parallelogram `q` at t and edge coordinates (u, v), as a triangle test of
+/// its half would report it.
+CA_HD_INLINE Hit parallelogramHit(const ParallelogramPlane& q, Float t, Float u, Float v) {
+    Hit hit;
+    hit.t = t;
+    parallelogramHitTriangle(q.mesh, u, v, hit.primId, hit.b1, hit.b2);
+    return hit;
 }
 
 }  // namespace caustica

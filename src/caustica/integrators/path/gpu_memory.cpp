@@ -36,7 +36,8 @@ GpuMemoryEstimate estimateGpuMemory(const GpuRenderSizes& s) {
               s.lights * sizeof(Light) + s.lightCdf * sizeof(float) + s.cylinders * sizeof(Cylinder) +
               s.lightTexels * sizeof(Spectrum) + s.textures * sizeof(Texture) + s.texels * sizeof(Spectrum);
     e.bvh = s.bvhNodes * sizeof(BvhNode) + s.bvhPrimIndices * sizeof(uint32_t) +
-            s.bvhPrims * sizeof(BvhPrimitive) + s.bvhParents * sizeof(uint32_t);
+            s.bvhPrims * sizeof(BvhPrimitive) + s.bvhParents * sizeof(uint32_t) +
+            s.bvhQuads * sizeof(ParallelogramPlane);
     const size_t samples = size_t(std::max(s.width, 0)) * size_t(std::max(s.height, 0)) *
                            size_t(std::max(s.samplesPerPass, 0));
     e.samplePass = samples * sizeof(PixelSample);
@@ -74,6 +75,7 @@ GpuRenderSizes gpuRenderSizes(const Scene& scene, const Bvh& bvh, int samplesPer
     s.bvhPrimIndices = bvh.primIndices.size();
     s.bvhPrims = bvh.prims.size();
     s.bvhParents = bvh.parents.size();  // uploaded for the short-stack and stackless traversals
+    s.bvhQuads = bvh.quads.size();
     s.width = scene.film.width;
     s.height = scene.film.height;
     s.samplesPerPass = samplesPerPass;

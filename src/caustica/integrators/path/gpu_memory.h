@@ -24,7 +24,7 @@ struct GpuRenderSizes {
     size_t positions = 0, normals = 0, uvs = 0, triangles = 0, triangleShape = 0, spheres = 0,
            cylinders = 0, shapes = 0, bsdfs = 0, lights = 0, lightCdf = 0, lightTexels = 0,
            textures = 0, texels = 0;
-    size_t bvhNodes = 0, bvhPrimIndices = 0, bvhPrims = 0, bvhParents = 0;
+    size_t bvhNodes = 0, bvhPrimIndices = 0, bvhPrims = 0, bvhParents = 0, bvhQuads = 0;
     int width = 0, height = 0;
     int samplesPerPass = 1;                 // K: samples per pixel in one pass
     PathMode mode = PathMode::Megakernel;

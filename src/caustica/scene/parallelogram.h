@@ -1,7 +1,7 @@
 // parallelogram.h — mesh shapes that are one parallelogram (every rectangle shape): two triangles
 // sharing a diagonal whose other corners are symmetric about its middle. Light setup samples such
-// an emitter as a parallelogram (Light::isQuad); the Embree intersector tests such shapes itself,
-// as one plane and two edge coordinates, instead of as two triangles (accel/parallelogram_intersect.h).
+// an emitter as a parallelogram (Light::isQuad); Embree's intersector and the own BVH test such
+// shapes as one plane and two edge coordinates, not as two triangles (accel/parallelogram_intersect.h).
 #pragma once
 
 #include <cstdint>
